@@ -1,0 +1,80 @@
+/* -*- c++ -*- */
+/*
+ * Copyright 2026 gr-rfseek authors.
+ * SPDX-License-Identifier: GPL-3.0-or-later
+ *
+ * channel_source: the simulated world as a GNU Radio source (emitter, scatterers, UAV,
+ * CFO). A thin adapter over gr::rfseek::world.
+ */
+
+#ifndef INCLUDED_RFSEEK_CHANNEL_SOURCE_H
+#define INCLUDED_RFSEEK_CHANNEL_SOURCE_H
+
+#include <gnuradio/sync_block.h>
+#include <gr-rfseek/api.h>
+#include <gr-rfseek/scenario.h>
+#include <cstdint>
+#include <string>
+
+namespace gr {
+namespace rfseek {
+
+/*!
+ * \brief Simulated beacon as received by the UAV, one slot at a time.
+ * \ingroup rfseek
+ *
+ * \details
+ * Output: complex64 at scenario.samp_rate_hz. Mode "burst" emits the N-sample beacon of
+ * each slot; mode "continuous" emits the whole slot (T_slot * fs samples, beacon first,
+ * noise after). The beacon's first sample carries tag "rfseek_beacon" = {slot, time,
+ * heading (measured)}; like uhd.usrp_source, sample 0 carries rx_time, rx_rate and
+ * rx_freq (in burst mode every burst carries rx_time).
+ *
+ * Message in "cmd": dict {heading (rad), optional slot}: the heading to fly; the UAV turns
+ * toward it at most at the turn rate. Message out "state": per-slot truth {slot, time, x,
+ * y, heading, measured_heading, distance, distance_flown, cfo_hz, doppler_hz, snr_db,
+ * power_db, arrived, capped} for logs and plots (never for the controller).
+ *
+ * lockstep (default): slot k+1 is produced only after the cmd for slot k arrived, so a
+ * run is reproducible from its seed. Otherwise the source runs free and applies the
+ * latest cmd at each slot boundary; realtime paces the output to the sample clock.
+ * The stream ends (WORK_DONE) when the UAV is within success_radius_m or has flown the
+ * flight cap. Malformed cmd messages are logged once per kind, counted and dropped.
+ */
+class RFSEEK_API channel_source : virtual public gr::sync_block
+{
+public:
+    typedef std::shared_ptr<channel_source> sptr;
+
+    /*!
+     * \param sc the run's scenario (validated; bad fields raise std::invalid_argument)
+     * \param mode "burst" or "continuous"
+     * \param lockstep wait for the cmd of each slot before producing the next
+     * \param realtime pace output to real time (for live-looking demos)
+     */
+    static sptr make(const scenario& sc,
+                     const std::string& mode = "burst",
+                     bool lockstep = true,
+                     bool realtime = false);
+
+    virtual scenario config() const = 0;
+    virtual std::string mode() const = 0;
+    //! Current slot index (the slot being, or last, produced).
+    virtual std::uint64_t slot() const = 0;
+    //! cmd messages dropped as malformed / as stale (slot not the current one).
+    virtual std::uint64_t malformed_count() const = 0;
+    virtual std::uint64_t stale_count() const = 0;
+    virtual bool lockstep() const = 0;
+    virtual bool realtime() const = 0;
+
+    virtual void set_snr_db(double snr_db) = 0;
+    virtual void set_heading_noise_rad(double sigma) = 0;
+    virtual void set_turn_rate_rad_per_s(double rate) = 0;
+    virtual void set_lockstep(bool lockstep) = 0;
+    virtual void set_realtime(bool realtime) = 0;
+};
+
+} // namespace rfseek
+} // namespace gr
+
+#endif /* INCLUDED_RFSEEK_CHANNEL_SOURCE_H */

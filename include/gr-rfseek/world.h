@@ -1,0 +1,132 @@
+/* -*- c++ -*- */
+/*
+ * Copyright 2026 gr-rfseek authors.
+ * SPDX-License-Identifier: GPL-3.0-or-later
+ *
+ * world: the simulated physics of one run, slot by slot. Emitter at the origin,
+ * scatterers in an annulus around it, the UAV flying at constant speed, the drifting
+ * carrier offset, and the complex baseband beacon the UAV receives (paper eq. 1-2, with
+ * the resolutions of DESIGN.md: physical Doppler sign, CFO phase as the integral of f_o,
+ * amplitudes and phases from eq. 2). Plain C++ (no GNU Radio types).
+ */
+
+#ifndef INCLUDED_RFSEEK_WORLD_H
+#define INCLUDED_RFSEEK_WORLD_H
+
+#include <gr-rfseek/api.h>
+#include <gr-rfseek/rng.h>
+#include <gr-rfseek/scenario.h>
+#include <complex>
+#include <cstdint>
+#include <vector>
+
+namespace gr {
+namespace rfseek {
+
+//! One point scatterer: position and complex reflection coefficient Gamma_i.
+struct RFSEEK_API scatterer {
+    double x_m;
+    double y_m;
+    std::complex<double> gamma;
+};
+
+//! One propagation path as seen from the UAV at the start of a slot.
+struct RFSEEK_API path_state {
+    std::complex<double> amplitude; //!< complex amplitude of the received path (sqrt W)
+    double doppler_hz;              //!< +f_d,max cos(heading - direction to source point)
+    double length_m;                //!< emitter -> (scatterer ->) UAV
+};
+
+class RFSEEK_API world
+{
+public:
+    //! Validates the scenario and draws the geometry, start and CFO from its seed.
+    explicit world(const scenario& sc);
+
+    const scenario& config() const { return d_sc; }
+    const std::vector<scatterer>& scatterers() const { return d_scatterers; }
+
+    // State at the start of the current slot
+    std::uint64_t slot() const { return d_slot; }
+    double time_s() const { return d_slot * d_sc.slot_period_s; }
+    double x_m() const { return d_x; }
+    double y_m() const { return d_y; }
+    double heading_rad() const { return d_heading; }
+    //! Heading the UAV's sensors report for this slot (true heading + sigma_phi noise).
+    double measured_heading_rad() const { return d_measured_heading; }
+    double distance_m() const;
+    double distance_flown_m() const { return d_flown; }
+    //! Bearing from the UAV toward the emitter.
+    double bearing_to_emitter_rad() const;
+    //! Carrier offset f_o at the start of this slot, and its linear drift rate a.
+    double cfo_hz() const { return d_cfo_hz; }
+    double cfo_drift_hz_per_s() const { return d_cfo_drift; }
+    //! Doppler of the line-of-sight path (+ when approaching).
+    double los_doppler_hz() const;
+    //! Electric field of eq. 2 at the UAV (1/m, unit transmit amplitude).
+    std::complex<double> field() const;
+    //! Every path (LOS first, then scatterers) at the UAV.
+    std::vector<path_state> paths() const;
+    //! Signal amplitude scale A (sqrt W * m) set from snr_db at the initial distance.
+    double amplitude_scale() const { return d_amp; }
+    //! Received beacon power A^2 |EF|^2 at the UAV (W, per sample).
+    double received_power() const;
+    //! Mean received power at distance d over positions and fading (no cross terms).
+    double mean_power_at(double distance_m) const;
+    double noise_power() const { return d_noise_power; }
+    //! Instantaneous per-sample SNR of this slot's beacon (dB).
+    double snr_db() const;
+
+    bool arrived() const { return d_arrived; }
+    bool capped() const { return d_capped; }
+    bool finished() const { return d_arrived || d_capped; }
+
+    /*!
+     * Synthesise n samples of the current slot: the beacon in the first
+     * min(n, window_len) samples, noise (if enabled) in all n. A pure function of the
+     * slot's state: calling it twice gives the same samples.
+     */
+    void synthesize(std::complex<float>* out, std::size_t n) const;
+    std::vector<std::complex<float>> synthesize(std::size_t n) const;
+
+    /*!
+     * Fly one slot toward commanded_heading_rad (turning at most at the turn rate),
+     * advance the CFO, then draw the next slot's measured heading. Throws
+     * std::invalid_argument on a non-finite heading, std::logic_error once finished.
+     */
+    void advance(double commanded_heading_rad);
+
+    // Run-time changes (take effect from the current slot)
+    void set_snr_db(double snr_db);
+    void set_heading_noise_rad(double sigma);
+    void set_turn_rate_rad_per_s(double rate);
+
+    //! Wrap an angle to (-pi, pi].
+    static double wrap(double a);
+
+private:
+    enum stream : std::uint64_t {
+        STREAM_GEOMETRY = 1,
+        STREAM_NOISE = 2,
+        STREAM_HEADING = 3,
+        STREAM_CFO_WALK = 4,
+    };
+
+    void draw_measured_heading();
+    void update_amplitude();
+    double mean_field_power(double distance_m) const;
+
+    scenario d_sc;
+    std::vector<scatterer> d_scatterers;
+    std::uint64_t d_slot = 0;
+    double d_x = 0.0, d_y = 0.0, d_heading = 0.0, d_measured_heading = 0.0;
+    double d_flown = 0.0;
+    double d_cfo_hz = 0.0, d_cfo_drift = 0.0, d_cfo_phase = 0.0;
+    double d_amp = 0.0, d_noise_power = 0.0;
+    bool d_arrived = false, d_capped = false;
+};
+
+} // namespace rfseek
+} // namespace gr
+
+#endif /* INCLUDED_RFSEEK_WORLD_H */

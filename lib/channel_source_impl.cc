@@ -1,0 +1,303 @@
+/* -*- c++ -*- */
+/*
+ * Copyright 2026 gr-rfseek authors.
+ * SPDX-License-Identifier: GPL-3.0-or-later
+ *
+ * channel_source: streams, tags and messages around a gr::rfseek::world. No physics here.
+ */
+
+#include "channel_source_impl.h"
+#include <gnuradio/io_signature.h>
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <thread>
+
+namespace gr {
+namespace rfseek {
+
+namespace {
+bool parse_mode(const std::string& mode)
+{
+    if (mode == "burst")
+        return false;
+    if (mode == "continuous")
+        return true;
+    throw std::invalid_argument("channel_source: mode = '" + mode +
+                                "': must be 'burst' or 'continuous'");
+}
+} // namespace
+
+channel_source::sptr channel_source::make(const scenario& sc,
+                                          const std::string& mode,
+                                          bool lockstep,
+                                          bool realtime)
+{
+    return gnuradio::make_block_sptr<channel_source_impl>(sc, mode, lockstep, realtime);
+}
+
+channel_source_impl::channel_source_impl(const scenario& sc,
+                                         const std::string& mode,
+                                         bool lockstep,
+                                         bool realtime)
+    : gr::sync_block("channel_source",
+                     gr::io_signature::make(0, 0, 0),
+                     gr::io_signature::make(1, 1, sizeof(gr_complex))),
+      d_world(sc),
+      d_continuous(parse_mode(mode)),
+      d_lockstep(lockstep),
+      d_realtime(realtime),
+      d_port_cmd(pmt::mp("cmd")),
+      d_port_state(pmt::mp("state")),
+      d_key_beacon(pmt::mp("rfseek_beacon")),
+      d_key_slot(pmt::mp("slot")),
+      d_key_time(pmt::mp("time")),
+      d_key_heading(pmt::mp("heading")),
+      d_key_rx_time(pmt::mp("rx_time")),
+      d_key_rx_rate(pmt::mp("rx_rate")),
+      d_key_rx_freq(pmt::mp("rx_freq"))
+{
+    d_cmd_heading = d_world.heading_rad();
+    message_port_register_in(d_port_cmd);
+    set_msg_handler(d_port_cmd, [this](const pmt::pmt_t& msg) { handle_cmd(msg); });
+    message_port_register_out(d_port_state);
+}
+
+bool channel_source_impl::start()
+{
+    d_t0 = std::chrono::steady_clock::now();
+    d_logger->debug("start: mode {}, {}, {}, seed {}",
+                    mode(),
+                    d_lockstep ? "lockstep" : "free-running",
+                    d_realtime ? "real time" : "as fast as possible",
+                    d_world.config().seed);
+    return true;
+}
+
+void channel_source_impl::drop(const std::string& kind, const pmt::pmt_t& msg)
+{
+    ++d_malformed;
+    if (d_logged.insert(kind).second)
+        d_logger->warn("cmd dropped ({}): {} (further drops of this kind are counted "
+                       "silently; see malformed_count())",
+                       kind,
+                       pmt::write_string(msg));
+}
+
+void channel_source_impl::handle_cmd(const pmt::pmt_t& msg)
+{
+    gr::thread::scoped_lock lock(d_setlock);
+    if (!pmt::is_dict(msg)) {
+        drop("not a dict", msg);
+        return;
+    }
+    pmt::pmt_t h, s;
+    try {
+        h = pmt::dict_ref(msg, d_key_heading, pmt::PMT_NIL);
+        s = pmt::dict_ref(msg, d_key_slot, pmt::PMT_NIL);
+    } catch (const std::exception&) {
+        drop("not a dict", msg);
+        return;
+    }
+    if (!(pmt::is_real(h) || pmt::is_integer(h) || pmt::is_uint64(h))) {
+        drop("no numeric 'heading'", msg);
+        return;
+    }
+    const double heading = pmt::to_double(h);
+    if (!std::isfinite(heading)) {
+        drop("non-finite 'heading'", msg);
+        return;
+    }
+    if (!pmt::is_null(s)) {
+        if (!(pmt::is_integer(s) || pmt::is_uint64(s))) {
+            drop("non-integer 'slot'", msg);
+            return;
+        }
+        const long long k = pmt::is_uint64(s) ? static_cast<long long>(pmt::to_uint64(s))
+                                               : pmt::to_long(s);
+        if (k != static_cast<long long>(d_world.slot())) {
+            ++d_stale;
+            d_logger->debug("cmd for slot {} ignored: current slot is {}", k, d_world.slot());
+            return;
+        }
+    }
+    d_cmd_heading = heading;
+    d_have_cmd = true;
+}
+
+void channel_source_impl::publish_state()
+{
+    const world& w = d_world;
+    pmt::pmt_t d = pmt::make_dict();
+    d = pmt::dict_add(d, d_key_slot, pmt::from_uint64(w.slot()));
+    d = pmt::dict_add(d, d_key_time, pmt::from_double(w.time_s()));
+    d = pmt::dict_add(d, pmt::mp("x"), pmt::from_double(w.x_m()));
+    d = pmt::dict_add(d, pmt::mp("y"), pmt::from_double(w.y_m()));
+    d = pmt::dict_add(d, d_key_heading, pmt::from_double(w.heading_rad()));
+    d = pmt::dict_add(d, pmt::mp("measured_heading"), pmt::from_double(w.measured_heading_rad()));
+    d = pmt::dict_add(d, pmt::mp("distance"), pmt::from_double(w.distance_m()));
+    d = pmt::dict_add(d, pmt::mp("distance_flown"), pmt::from_double(w.distance_flown_m()));
+    d = pmt::dict_add(d, pmt::mp("cfo_hz"), pmt::from_double(w.cfo_hz()));
+    d = pmt::dict_add(d, pmt::mp("doppler_hz"), pmt::from_double(w.los_doppler_hz()));
+    d = pmt::dict_add(d, pmt::mp("snr_db"), pmt::from_double(w.snr_db()));
+    const double p = std::max(w.received_power(), 1e-300);
+    d = pmt::dict_add(d, pmt::mp("power_db"), pmt::from_double(10.0 * std::log10(p)));
+    d = pmt::dict_add(d, pmt::mp("arrived"), pmt::from_bool(w.arrived()));
+    d = pmt::dict_add(d, pmt::mp("capped"), pmt::from_bool(w.capped()));
+    message_port_pub(d_port_state, d);
+}
+
+void channel_source_impl::begin_slot(std::uint64_t offset)
+{
+    const scenario& sc = d_world.config();
+    const std::size_t n = d_continuous ? sc.slot_samples() : sc.window_len;
+    d_buf.resize(n);
+    d_world.synthesize(d_buf.data(), n);
+    d_pos = 0;
+
+    const double t = d_world.time_s();
+    if (d_world.slot() == 0 || !d_continuous) {
+        const double secs = std::floor(t);
+        add_item_tag(0,
+                     offset,
+                     d_key_rx_time,
+                     pmt::make_tuple(pmt::from_uint64(static_cast<std::uint64_t>(secs)),
+                                     pmt::from_double(t - secs)));
+    }
+    if (d_world.slot() == 0) {
+        add_item_tag(0, offset, d_key_rx_rate, pmt::from_double(sc.samp_rate_hz));
+        add_item_tag(0, offset, d_key_rx_freq, pmt::from_double(sc.carrier_hz));
+    }
+    pmt::pmt_t b = pmt::make_dict();
+    b = pmt::dict_add(b, d_key_slot, pmt::from_uint64(d_world.slot()));
+    b = pmt::dict_add(b, d_key_time, pmt::from_double(t));
+    b = pmt::dict_add(b, d_key_heading, pmt::from_double(d_world.measured_heading_rad()));
+    add_item_tag(0, offset, d_key_beacon, b, alias_pmt());
+    publish_state();
+}
+
+int channel_source_impl::work(int noutput_items,
+                              gr_vector_const_void_star& input_items,
+                              gr_vector_void_star& output_items)
+{
+    auto out = static_cast<gr_complex*>(output_items[0]);
+    gr::thread::scoped_lock lock(d_setlock);
+    int produced = 0;
+
+    while (produced < noutput_items && !d_done) {
+        if (!d_started || d_pos == d_buf.size()) {
+            if (d_started) {
+                if (d_lockstep && !d_have_cmd)
+                    break; // parked until the cmd for this slot arrives
+                d_have_cmd = false;
+                d_world.advance(d_cmd_heading);
+                if (d_world.finished()) {
+                    publish_state();
+                    d_logger->info("{} at slot {} after {:.1f} m flown, {:.1f} m from the "
+                                   "emitter",
+                                   d_world.arrived() ? "arrived" : "flight cap reached",
+                                   d_world.slot(),
+                                   d_world.distance_flown_m(),
+                                   d_world.distance_m());
+                    d_done = true;
+                    break;
+                }
+            }
+            if (d_realtime) {
+                const auto due = d_t0 + std::chrono::duration_cast<
+                                            std::chrono::steady_clock::duration>(
+                                            std::chrono::duration<double>(d_world.time_s()));
+                if (std::chrono::steady_clock::now() < due) {
+                    if (produced > 0)
+                        break;
+                    lock.unlock();
+                    std::this_thread::sleep_until(due);
+                    lock.lock();
+                }
+            }
+            d_started = true;
+            begin_slot(nitems_written(0) + produced);
+        }
+        const std::size_t n =
+            std::min<std::size_t>(noutput_items - produced, d_buf.size() - d_pos);
+        std::copy_n(d_buf.data() + d_pos, n, out + produced);
+        d_pos += n;
+        produced += static_cast<int>(n);
+    }
+    if (produced == 0 && d_done)
+        return WORK_DONE;
+    return produced;
+}
+
+scenario channel_source_impl::config() const
+{
+    gr::thread::scoped_lock lock(setlock());
+    return d_world.config();
+}
+
+std::uint64_t channel_source_impl::slot() const
+{
+    gr::thread::scoped_lock lock(setlock());
+    return d_world.slot();
+}
+
+std::uint64_t channel_source_impl::malformed_count() const
+{
+    gr::thread::scoped_lock lock(setlock());
+    return d_malformed;
+}
+
+std::uint64_t channel_source_impl::stale_count() const
+{
+    gr::thread::scoped_lock lock(setlock());
+    return d_stale;
+}
+
+bool channel_source_impl::lockstep() const
+{
+    gr::thread::scoped_lock lock(setlock());
+    return d_lockstep;
+}
+
+bool channel_source_impl::realtime() const
+{
+    gr::thread::scoped_lock lock(setlock());
+    return d_realtime;
+}
+
+void channel_source_impl::set_snr_db(double snr_db)
+{
+    gr::thread::scoped_lock lock(d_setlock);
+    d_world.set_snr_db(snr_db);
+}
+
+void channel_source_impl::set_heading_noise_rad(double sigma)
+{
+    gr::thread::scoped_lock lock(d_setlock);
+    d_world.set_heading_noise_rad(sigma);
+}
+
+void channel_source_impl::set_turn_rate_rad_per_s(double rate)
+{
+    gr::thread::scoped_lock lock(d_setlock);
+    d_world.set_turn_rate_rad_per_s(rate);
+}
+
+void channel_source_impl::set_lockstep(bool lockstep)
+{
+    gr::thread::scoped_lock lock(d_setlock);
+    d_lockstep = lockstep;
+}
+
+void channel_source_impl::set_realtime(bool realtime)
+{
+    gr::thread::scoped_lock lock(d_setlock);
+    if (realtime && !d_realtime)
+        d_t0 = std::chrono::steady_clock::now() -
+               std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                   std::chrono::duration<double>(d_world.time_s()));
+    d_realtime = realtime;
+}
+
+} // namespace rfseek
+} // namespace gr

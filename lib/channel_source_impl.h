@@ -1,0 +1,82 @@
+/* -*- c++ -*- */
+/*
+ * Copyright 2026 gr-rfseek authors.
+ * SPDX-License-Identifier: GPL-3.0-or-later
+ */
+
+#ifndef INCLUDED_RFSEEK_CHANNEL_SOURCE_IMPL_H
+#define INCLUDED_RFSEEK_CHANNEL_SOURCE_IMPL_H
+
+#include <gr-rfseek/channel_source.h>
+#include <gr-rfseek/world.h>
+#include <chrono>
+#include <set>
+#include <vector>
+
+namespace gr {
+namespace rfseek {
+
+class channel_source_impl : public channel_source
+{
+public:
+    channel_source_impl(const scenario& sc,
+                        const std::string& mode,
+                        bool lockstep,
+                        bool realtime);
+
+    int work(int noutput_items,
+             gr_vector_const_void_star& input_items,
+             gr_vector_void_star& output_items) override;
+    bool start() override;
+
+    scenario config() const override;
+    std::string mode() const override { return d_continuous ? "continuous" : "burst"; }
+    std::uint64_t slot() const override;
+    std::uint64_t malformed_count() const override;
+    std::uint64_t stale_count() const override;
+    bool lockstep() const override;
+    bool realtime() const override;
+
+    void set_snr_db(double snr_db) override;
+    void set_heading_noise_rad(double sigma) override;
+    void set_turn_rate_rad_per_s(double rate) override;
+    void set_lockstep(bool lockstep) override;
+    void set_realtime(bool realtime) override;
+
+private:
+    gr::thread::mutex& setlock() const { return const_cast<gr::thread::mutex&>(d_setlock); }
+    void handle_cmd(const pmt::pmt_t& msg);
+    void drop(const std::string& kind, const pmt::pmt_t& msg);
+    void begin_slot(std::uint64_t offset);
+    void publish_state();
+
+    world d_world;
+    const bool d_continuous;
+    bool d_lockstep;
+    bool d_realtime;
+    std::vector<gr_complex> d_buf;
+    std::size_t d_pos = 0;
+    bool d_started = false;
+    bool d_done = false;
+    bool d_have_cmd = false;
+    double d_cmd_heading = 0.0;
+    std::uint64_t d_malformed = 0;
+    std::uint64_t d_stale = 0;
+    std::set<std::string> d_logged;
+    std::chrono::steady_clock::time_point d_t0;
+
+    const pmt::pmt_t d_port_cmd;
+    const pmt::pmt_t d_port_state;
+    const pmt::pmt_t d_key_beacon;
+    const pmt::pmt_t d_key_slot;
+    const pmt::pmt_t d_key_time;
+    const pmt::pmt_t d_key_heading;
+    const pmt::pmt_t d_key_rx_time;
+    const pmt::pmt_t d_key_rx_rate;
+    const pmt::pmt_t d_key_rx_freq;
+};
+
+} // namespace rfseek
+} // namespace gr
+
+#endif /* INCLUDED_RFSEEK_CHANNEL_SOURCE_IMPL_H */

@@ -1,0 +1,289 @@
+/* -*- c++ -*- */
+/*
+ * Copyright 2026 gr-rfseek authors.
+ * SPDX-License-Identifier: GPL-3.0-or-later
+ *
+ * scenario: validation, derived quantities and by-name access to the run parameters.
+ */
+
+#include <gr-rfseek/scenario.h>
+#include <charconv>
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
+#include <functional>
+#include <iomanip>
+#include <limits>
+#include <sstream>
+#include <stdexcept>
+
+namespace gr {
+namespace rfseek {
+
+namespace {
+
+std::string fmt_num(double v)
+{
+    // Shortest text that reads back as the same double.
+    char buf[64];
+    const auto r = std::to_chars(buf, buf + sizeof(buf), v);
+    return std::string(buf, r.ptr);
+}
+
+[[noreturn]] void bad(const std::string& field, double value, const std::string& range)
+{
+    throw std::invalid_argument("scenario." + field + " = " + fmt_num(value) +
+                                ": must be " + range);
+}
+
+void require_finite(const std::string& field, double v)
+{
+    if (!std::isfinite(v))
+        bad(field, v, "a finite number");
+}
+
+void require_range(const std::string& field, double v, double lo, double hi)
+{
+    if (!(v >= lo && v <= hi))
+        bad(field, v, "in [" + fmt_num(lo) + ", " + fmt_num(hi) + "]");
+}
+
+void require_positive(const std::string& field, double v)
+{
+    if (!(v > 0.0) || !std::isfinite(v))
+        bad(field, v, "> 0 and finite");
+}
+
+void require_nonneg(const std::string& field, double v)
+{
+    if (!(v >= 0.0) || !std::isfinite(v))
+        bad(field, v, ">= 0 and finite");
+}
+
+double parse_double(const std::string& key, const std::string& text)
+{
+    const char* s = text.c_str();
+    char* end = nullptr;
+    errno = 0;
+    const double v = std::strtod(s, &end);
+    if (end == s || *end != '\0' || errno == ERANGE)
+        throw std::invalid_argument("scenario." + key + ": cannot parse '" + text +
+                                    "' as a number");
+    return v;
+}
+
+enum class kind { real, integer, boolean, optional_real, unsigned64 };
+
+struct field {
+    const char* name;
+    kind k;
+    std::function<void*(scenario&)> ptr;
+};
+
+#define RFSEEK_FIELD(NAME, KIND) \
+    field { #NAME, KIND, [](scenario& s) -> void* { return &s.NAME; } }
+
+const std::vector<field>& fields()
+{
+    static const std::vector<field> f = {
+        RFSEEK_FIELD(initial_distance_m, kind::real),
+        RFSEEK_FIELD(start_angle_rad, kind::optional_real),
+        RFSEEK_FIELD(start_heading_rad, kind::optional_real),
+        RFSEEK_FIELD(num_scatterers, kind::integer),
+        RFSEEK_FIELD(scatterer_inner_radius_m, kind::real),
+        RFSEEK_FIELD(scatterer_outer_radius_m, kind::real),
+        RFSEEK_FIELD(gamma_min, kind::real),
+        RFSEEK_FIELD(gamma_max, kind::real),
+        RFSEEK_FIELD(carrier_hz, kind::real),
+        RFSEEK_FIELD(samp_rate_hz, kind::real),
+        RFSEEK_FIELD(window_len, kind::integer),
+        RFSEEK_FIELD(slot_period_s, kind::real),
+        RFSEEK_FIELD(fft_len, kind::integer),
+        RFSEEK_FIELD(snr_db, kind::real),
+        RFSEEK_FIELD(noise_power_db, kind::real),
+        RFSEEK_FIELD(add_noise, kind::boolean),
+        RFSEEK_FIELD(cfo_hz, kind::optional_real),
+        RFSEEK_FIELD(cfo_range_hz, kind::real),
+        RFSEEK_FIELD(cfo_drift_hz_per_s, kind::optional_real),
+        RFSEEK_FIELD(cfo_drift_range_hz_per_s, kind::real),
+        RFSEEK_FIELD(cfo_walk_hz_per_sqrt_s, kind::real),
+        RFSEEK_FIELD(speed_mps, kind::real),
+        RFSEEK_FIELD(heading_noise_rad, kind::real),
+        RFSEEK_FIELD(turn_rate_rad_per_s, kind::real),
+        RFSEEK_FIELD(success_radius_m, kind::real),
+        RFSEEK_FIELD(flight_cap_m, kind::optional_real),
+        RFSEEK_FIELD(seed, kind::unsigned64),
+    };
+    return f;
+}
+#undef RFSEEK_FIELD
+
+const field& find_field(const std::string& key)
+{
+    for (const auto& f : fields())
+        if (key == f.name)
+            return f;
+    std::string all;
+    for (const auto& f : fields())
+        all += (all.empty() ? "" : ", ") + std::string(f.name);
+    throw std::invalid_argument("scenario: unknown parameter '" + key +
+                                "' (known: " + all + ")");
+}
+
+} // namespace
+
+int scenario::slot_samples() const
+{
+    return static_cast<int>(std::lround(slot_period_s * samp_rate_hz));
+}
+
+double scenario::effective_flight_cap_m() const
+{
+    return flight_cap_m ? *flight_cap_m : 4.0 * shortest_path_m();
+}
+
+void scenario::validate() const
+{
+    require_range("initial_distance_m", initial_distance_m, 1.0, 1.0e7);
+    if (start_angle_rad)
+        require_finite("start_angle_rad", *start_angle_rad);
+    if (start_heading_rad)
+        require_finite("start_heading_rad", *start_heading_rad);
+    require_range("num_scatterers", num_scatterers, 0, 10000);
+    require_nonneg("scatterer_inner_radius_m", scatterer_inner_radius_m);
+    require_positive("scatterer_outer_radius_m", scatterer_outer_radius_m);
+    if (scatterer_outer_radius_m < scatterer_inner_radius_m)
+        bad("scatterer_outer_radius_m",
+            scatterer_outer_radius_m,
+            ">= scatterer_inner_radius_m (" + fmt_num(scatterer_inner_radius_m) + ")");
+    require_range("gamma_min", gamma_min, 0.0, 1.0);
+    require_range("gamma_max", gamma_max, gamma_min, 1.0);
+    require_range("carrier_hz", carrier_hz, 1.0e3, 1.0e12);
+    require_range("samp_rate_hz", samp_rate_hz, 1.0, 1.0e10);
+    require_range("slot_period_s", slot_period_s, 1.0e-6, 3600.0);
+    require_range("fft_len", fft_len, 4, 1 << 24);
+    require_range("window_len", window_len, 3, fft_len);
+    if (window_len > slot_samples())
+        bad("window_len",
+            window_len,
+            "<= slot_period_s * samp_rate_hz (" + std::to_string(slot_samples()) +
+                "): the beacon must fit in its slot");
+    require_range("snr_db", snr_db, -100.0, 100.0);
+    require_range("noise_power_db", noise_power_db, -300.0, 100.0);
+    require_nonneg("cfo_range_hz", cfo_range_hz);
+    require_nonneg("cfo_drift_range_hz_per_s", cfo_drift_range_hz_per_s);
+    require_nonneg("cfo_walk_hz_per_sqrt_s", cfo_walk_hz_per_sqrt_s);
+    require_nonneg("speed_mps", speed_mps);
+    require_range("speed_mps", speed_mps, 0.0, 1000.0);
+    const double nyquist = 0.5 * samp_rate_hz;
+    const double fd = max_doppler_hz();
+    if (cfo_range_hz + fd >= nyquist)
+        bad("cfo_range_hz",
+            cfo_range_hz,
+            "< samp_rate_hz / 2 - max Doppler (" + fmt_num(nyquist - fd) +
+                " Hz) so the beacon stays inside the band");
+    if (cfo_hz) {
+        require_finite("cfo_hz", *cfo_hz);
+        if (std::abs(*cfo_hz) + fd >= nyquist)
+            bad("cfo_hz", *cfo_hz, "in +-" + fmt_num(nyquist - fd) + " Hz (inside the band)");
+    }
+    if (cfo_drift_hz_per_s)
+        require_range("cfo_drift_hz_per_s", *cfo_drift_hz_per_s, -1.0e4, 1.0e4);
+    require_range("heading_noise_rad", heading_noise_rad, 0.0, M_PI);
+    require_nonneg("turn_rate_rad_per_s", turn_rate_rad_per_s);
+    require_range("success_radius_m", success_radius_m, 0.0, initial_distance_m);
+    if (flight_cap_m)
+        require_positive("flight_cap_m", *flight_cap_m);
+}
+
+std::vector<std::string> scenario::keys()
+{
+    std::vector<std::string> k;
+    for (const auto& f : fields())
+        k.emplace_back(f.name);
+    return k;
+}
+
+void scenario::set(const std::string& key, const std::string& value)
+{
+    const field& f = find_field(key);
+    void* p = f.ptr(*this);
+    switch (f.k) {
+    case kind::real:
+        *static_cast<double*>(p) = parse_double(key, value);
+        break;
+    case kind::integer: {
+        const double v = parse_double(key, value);
+        if (v != std::floor(v) || std::abs(v) > std::numeric_limits<int>::max())
+            throw std::invalid_argument("scenario." + key + ": '" + value +
+                                        "' is not an integer");
+        *static_cast<int*>(p) = static_cast<int>(v);
+        break;
+    }
+    case kind::unsigned64: {
+        char* end = nullptr;
+        errno = 0;
+        const unsigned long long v = std::strtoull(value.c_str(), &end, 10);
+        if (value.empty() || *end != '\0' || errno == ERANGE || value[0] == '-')
+            throw std::invalid_argument("scenario." + key + ": '" + value +
+                                        "' is not a non-negative integer");
+        *static_cast<std::uint64_t*>(p) = v;
+        break;
+    }
+    case kind::boolean:
+        if (value == "true" || value == "1" || value == "True")
+            *static_cast<bool*>(p) = true;
+        else if (value == "false" || value == "0" || value == "False")
+            *static_cast<bool*>(p) = false;
+        else
+            throw std::invalid_argument("scenario." + key + ": '" + value +
+                                        "' is not true/false");
+        break;
+    case kind::optional_real:
+        if (value == "none" || value == "None" || value == "random" || value.empty())
+            static_cast<std::optional<double>*>(p)->reset();
+        else
+            *static_cast<std::optional<double>*>(p) = parse_double(key, value);
+        break;
+    }
+}
+
+std::string scenario::get(const std::string& key) const
+{
+    const field& f = find_field(key);
+    void* p = f.ptr(const_cast<scenario&>(*this));
+    switch (f.k) {
+    case kind::real:
+        return fmt_num(*static_cast<double*>(p));
+    case kind::integer:
+        return std::to_string(*static_cast<int*>(p));
+    case kind::unsigned64:
+        return std::to_string(*static_cast<std::uint64_t*>(p));
+    case kind::boolean:
+        return *static_cast<bool*>(p) ? "true" : "false";
+    case kind::optional_real: {
+        const auto& o = *static_cast<std::optional<double>*>(p);
+        return o ? fmt_num(*o) : "none";
+    }
+    }
+    return "";
+}
+
+std::string scenario::to_json() const
+{
+    std::ostringstream os;
+    os << "{";
+    bool first = true;
+    for (const auto& f : fields()) {
+        std::string v = get(f.name);
+        if (f.k == kind::optional_real && v == "none")
+            v = "null";
+        os << (first ? "" : ", ") << "\"" << f.name << "\": " << v;
+        first = false;
+    }
+    os << "}";
+    return os.str();
+}
+
+} // namespace rfseek
+} // namespace gr

@@ -1,0 +1,282 @@
+/* -*- c++ -*- */
+/*
+ * Copyright 2026 gr-rfseek authors.
+ * SPDX-License-Identifier: GPL-3.0-or-later
+ *
+ * world: emitter, scatterers, UAV kinematics, CFO model and beacon synthesis.
+ *
+ * Per slot k the UAV is at p_k with heading phi_k. Each path p (LOS, then one per
+ * scatterer) arrives with the complex amplitude of its term in eq. 2,
+ *   A Gamma_p exp(-j beta L_p) / L_p   (Gamma_LOS = 1, L = path length),
+ * and rotates at its own Doppler f_p = (v / lambda) cos(phi_k - psi_p), psi_p the
+ * direction from the UAV toward the path's source point (emitter or scatterer):
+ * positive when approaching (DESIGN.md, item 1). All paths share the carrier offset
+ * f_o(t) = f_o(0) + a t + w(t), whose phase is integrated continuously (item 2).
+ */
+
+#include <gr-rfseek/world.h>
+#include <volk/volk.h>
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace gr {
+namespace rfseek {
+
+namespace {
+constexpr double TWO_PI = 2.0 * M_PI;
+
+thread_local std::vector<std::complex<float>> tl_ones;
+thread_local std::vector<std::complex<float>> tl_tmp;
+} // namespace
+
+double world::wrap(double a)
+{
+    a = std::fmod(a + M_PI, TWO_PI);
+    if (a <= 0.0)
+        a += TWO_PI;
+    return a - M_PI;
+}
+
+world::world(const scenario& sc) : d_sc(sc)
+{
+    d_sc.validate();
+    rng g(d_sc.seed, STREAM_GEOMETRY);
+
+    // Draw order is fixed: start angle, start heading, CFO, drift, then scatterers.
+    const double alpha = g.uniform(-M_PI, M_PI);
+    const double heading = g.uniform(-M_PI, M_PI);
+    const double cfo = g.uniform(-1.0, 1.0) * d_sc.cfo_range_hz;
+    const double drift = g.uniform(-1.0, 1.0) * d_sc.cfo_drift_range_hz_per_s;
+    const double cfo_phase = g.uniform(-M_PI, M_PI);
+
+    const double a0 = d_sc.start_angle_rad.value_or(alpha);
+    d_x = d_sc.initial_distance_m * std::cos(a0);
+    d_y = d_sc.initial_distance_m * std::sin(a0);
+    d_heading = wrap(d_sc.start_heading_rad.value_or(heading));
+    d_cfo_hz = d_sc.cfo_hz.value_or(cfo);
+    d_cfo_drift = d_sc.cfo_drift_hz_per_s.value_or(drift);
+    d_cfo_phase = cfo_phase;
+
+    // Scatterers uniform in the annulus area, angles uniform (Sec. II), Gamma_i with
+    // uniform magnitude in [gamma_min, gamma_max] and uniform phase.
+    const double r2_in = d_sc.scatterer_inner_radius_m * d_sc.scatterer_inner_radius_m;
+    const double r2_out = d_sc.scatterer_outer_radius_m * d_sc.scatterer_outer_radius_m;
+    d_scatterers.reserve(d_sc.num_scatterers);
+    for (int i = 0; i < d_sc.num_scatterers; ++i) {
+        const double r = std::sqrt(g.uniform(r2_in, r2_out));
+        const double ang = g.uniform(-M_PI, M_PI);
+        const double mag = g.uniform(d_sc.gamma_min, d_sc.gamma_max);
+        const double ph = g.uniform(-M_PI, M_PI);
+        d_scatterers.push_back(
+            { r * std::cos(ang), r * std::sin(ang), std::polar(mag, ph) });
+    }
+
+    update_amplitude();
+    draw_measured_heading();
+    d_arrived = distance_m() <= d_sc.success_radius_m;
+}
+
+void world::update_amplitude()
+{
+    d_noise_power = std::pow(10.0, d_sc.noise_power_db / 10.0);
+    const double target = d_noise_power * std::pow(10.0, d_sc.snr_db / 10.0);
+    d_amp = std::sqrt(target / mean_field_power(d_sc.initial_distance_m));
+}
+
+double world::mean_power_at(double d) const { return d_amp * d_amp * mean_field_power(d); }
+
+double world::mean_field_power(double d) const
+{
+    // E|EF|^2 over the positions at distance d: the cross terms average to zero (random
+    // scatterer phases), the scattered path length is d_i + r_i with r_i ~ d.
+    double p = 1.0 / (d * d);
+    for (const auto& s : d_scatterers) {
+        const double L = std::hypot(s.x_m, s.y_m) + d;
+        p += std::norm(s.gamma) / (L * L);
+    }
+    return p;
+}
+
+void world::draw_measured_heading()
+{
+    rng g(d_sc.seed, STREAM_HEADING, d_slot);
+    d_measured_heading = wrap(d_heading + d_sc.heading_noise_rad * g.normal());
+}
+
+double world::distance_m() const { return std::hypot(d_x, d_y); }
+
+double world::bearing_to_emitter_rad() const { return std::atan2(-d_y, -d_x); }
+
+double world::los_doppler_hz() const
+{
+    return d_sc.max_doppler_hz() * std::cos(d_heading - bearing_to_emitter_rad());
+}
+
+std::vector<path_state> world::paths() const
+{
+    const double beta = TWO_PI / d_sc.wavelength_m();
+    const double fd = d_sc.max_doppler_hz();
+    std::vector<path_state> out;
+    out.reserve(d_scatterers.size() + 1);
+    const double d = distance_m();
+    out.push_back({ d_amp * std::polar(1.0 / d, -std::fmod(beta * d, TWO_PI)),
+                    fd * std::cos(d_heading - bearing_to_emitter_rad()),
+                    d });
+    for (const auto& s : d_scatterers) {
+        const double di = std::hypot(s.x_m, s.y_m);
+        const double ri = std::hypot(d_x - s.x_m, d_y - s.y_m);
+        const double L = di + ri;
+        const double psi = std::atan2(s.y_m - d_y, s.x_m - d_x);
+        out.push_back({ d_amp * s.gamma * std::polar(1.0 / L, -std::fmod(beta * L, TWO_PI)),
+                        fd * std::cos(d_heading - psi),
+                        L });
+    }
+    return out;
+}
+
+std::complex<double> world::field() const
+{
+    if (d_amp <= 0.0)
+        return 0.0;
+    std::complex<double> ef = 0.0;
+    for (const auto& p : paths())
+        ef += p.amplitude;
+    return ef / d_amp;
+}
+
+double world::received_power() const
+{
+    std::complex<double> s = 0.0;
+    for (const auto& p : paths())
+        s += p.amplitude;
+    return std::norm(s);
+}
+
+double world::snr_db() const
+{
+    return 10.0 * std::log10(std::max(received_power(), 1e-300) / d_noise_power);
+}
+
+void world::synthesize(std::complex<float>* out, std::size_t n) const
+{
+    if (n == 0)
+        return;
+    std::fill(out, out + n, std::complex<float>(0.0f, 0.0f));
+    const std::size_t nb = std::min<std::size_t>(n, d_sc.window_len);
+    const double ts = 1.0 / d_sc.samp_rate_hz;
+
+    if (tl_ones.size() < nb) {
+        tl_ones.assign(nb, std::complex<float>(1.0f, 0.0f));
+        tl_tmp.resize(nb);
+    }
+    // Sum over paths of a_p exp(j 2 pi f_p n Ts): the unit phasor of each path is made
+    // conjugated so the conjugate-multiply-add kernel yields a_p z_p^n.
+    for (const auto& p : paths()) {
+        const auto zc = std::complex<float>(std::polar(1.0, -TWO_PI * p.doppler_hz * ts));
+        lv_32fc_t phase = lv_cmake(1.0f, 0.0f);
+        volk_32fc_s32fc_x2_rotator_32fc(tl_tmp.data(), tl_ones.data(), zc, &phase, nb);
+        volk_32fc_x2_s32fc_multiply_conjugate_add_32fc(
+            out, out, tl_tmp.data(), std::complex<float>(p.amplitude), nb);
+    }
+    // Common carrier offset: frequency at the middle of the beacon (the drift changes
+    // it by a * T, 0.005 Hz at the reference scenario, within the window).
+    const double f_o = d_cfo_hz + d_cfo_drift * 0.5 * nb * ts;
+    lv_32fc_t phase = std::complex<float>(std::polar(1.0, d_cfo_phase));
+    const auto zo = std::complex<float>(std::polar(1.0, TWO_PI * f_o * ts));
+    volk_32fc_s32fc_x2_rotator_32fc(out, out, zo, &phase, nb);
+
+    if (d_sc.add_noise) {
+        rng g(d_sc.seed, STREAM_NOISE, d_slot);
+        const double sigma = std::sqrt(0.5 * d_noise_power);
+        for (std::size_t i = 0; i < n; ++i) {
+            const double re = g.normal();
+            const double im = g.normal();
+            out[i] += std::complex<float>(sigma * re, sigma * im);
+        }
+    }
+}
+
+std::vector<std::complex<float>> world::synthesize(std::size_t n) const
+{
+    std::vector<std::complex<float>> v(n);
+    synthesize(v.data(), n);
+    return v;
+}
+
+void world::advance(double commanded_heading_rad)
+{
+    if (!std::isfinite(commanded_heading_rad))
+        throw std::invalid_argument("world::advance: commanded heading must be finite");
+    if (finished())
+        throw std::logic_error("world::advance: the run has finished (arrived or capped)");
+
+    const double dt = d_sc.slot_period_s;
+    const double v = d_sc.speed_mps;
+    const double target = wrap(commanded_heading_rad);
+    const double rate = d_sc.turn_rate_rad_per_s;
+
+    if (rate <= 0.0) {
+        d_heading = target;
+        d_x += v * dt * std::cos(d_heading);
+        d_y += v * dt * std::sin(d_heading);
+    } else {
+        // Turn at the maximum rate along an arc until aligned, then fly straight.
+        const double err = wrap(target - d_heading);
+        const double turn_time = std::min(std::abs(err) / rate, dt);
+        const double w = (err >= 0.0 ? rate : -rate);
+        if (turn_time > 0.0) {
+            const double h1 = d_heading + w * turn_time;
+            d_x += (v / w) * (std::sin(h1) - std::sin(d_heading));
+            d_y -= (v / w) * (std::cos(h1) - std::cos(d_heading));
+            d_heading = h1;
+        }
+        if (std::abs(wrap(target - d_heading)) < 1e-12)
+            d_heading = target;
+        d_heading = wrap(d_heading);
+        const double straight = dt - turn_time;
+        d_x += v * straight * std::cos(d_heading);
+        d_y += v * straight * std::sin(d_heading);
+    }
+    d_flown += v * dt;
+
+    // CFO: integrate the phase over the slot, then step drift and random walk.
+    d_cfo_phase =
+        wrap(d_cfo_phase + TWO_PI * (d_cfo_hz * dt + 0.5 * d_cfo_drift * dt * dt));
+    rng g(d_sc.seed, STREAM_CFO_WALK, d_slot);
+    d_cfo_hz += d_cfo_drift * dt + d_sc.cfo_walk_hz_per_sqrt_s * std::sqrt(dt) * g.normal();
+
+    ++d_slot;
+    d_arrived = distance_m() <= d_sc.success_radius_m;
+    d_capped = !d_arrived && d_flown >= d_sc.effective_flight_cap_m() - 1e-9;
+    draw_measured_heading();
+}
+
+void world::set_snr_db(double snr_db)
+{
+    scenario s = d_sc;
+    s.snr_db = snr_db;
+    s.validate();
+    d_sc = s;
+    update_amplitude();
+}
+
+void world::set_heading_noise_rad(double sigma)
+{
+    scenario s = d_sc;
+    s.heading_noise_rad = sigma;
+    s.validate();
+    d_sc = s;
+}
+
+void world::set_turn_rate_rad_per_s(double rate)
+{
+    scenario s = d_sc;
+    s.turn_rate_rad_per_s = rate;
+    s.validate();
+    d_sc = s;
+}
+
+} // namespace rfseek
+} // namespace gr

@@ -1,0 +1,26 @@
+/*
+ * Copyright 2026 gr-rfseek authors.
+ * SPDX-License-Identifier: GPL-3.0-or-later
+ *
+ * Module entry point of gnuradio.rfseek's compiled part (rfseek_python).
+ */
+
+#include <pybind11/pybind11.h>
+
+namespace py = pybind11;
+
+void bind_rng(py::module& m);
+void bind_scenario(py::module& m);
+void bind_world(py::module& m);
+void bind_channel_source(py::module& m);
+
+PYBIND11_MODULE(rfseek_python, m)
+{
+    // Base classes of the blocks (gr::sync_block, ...) come from gnuradio.gr.
+    py::module::import("gnuradio.gr");
+
+    bind_rng(m);
+    bind_scenario(m);
+    bind_world(m);
+    bind_channel_source(m);
+}

@@ -1,0 +1,35 @@
+/*
+ * Copyright 2026 gr-rfseek authors.
+ * SPDX-License-Identifier: GPL-3.0-or-later
+ */
+
+/* BINDTOOL_HEADER_FILE(rng.h) */
+/* BINDTOOL_HEADER_FILE_HASH(0) */
+
+#include <pybind11/pybind11.h>
+#include <gr-rfseek/rng.h>
+
+namespace py = pybind11;
+
+void bind_rng(py::module& m)
+{
+    using gr::rfseek::rng;
+    py::class_<rng>(m, "rng", "Run-owned random source (xoshiro256**, seeded per stream).")
+        .def(py::init<std::uint64_t, std::uint64_t, std::uint64_t>(),
+             py::arg("seed"),
+             py::arg("stream") = 0,
+             py::arg("index") = 0)
+        .def("reseed",
+             &rng::reseed,
+             py::arg("seed"),
+             py::arg("stream") = 0,
+             py::arg("index") = 0)
+        .def("next", &rng::next, "Next raw 64-bit value.")
+        .def("uniform", py::overload_cast<>(&rng::uniform), "Uniform in [0, 1).")
+        .def("uniform",
+             py::overload_cast<double, double>(&rng::uniform),
+             py::arg("a"),
+             py::arg("b"),
+             "Uniform in [a, b).")
+        .def("normal", &rng::normal, "Standard normal.");
+}

@@ -1,0 +1,81 @@
+/*
+ * Copyright 2026 gr-rfseek authors.
+ * SPDX-License-Identifier: GPL-3.0-or-later
+ */
+
+/* BINDTOOL_HEADER_FILE(scenario.h) */
+/* BINDTOOL_HEADER_FILE_HASH(0) */
+
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+#include <gr-rfseek/scenario.h>
+#include <algorithm>
+
+namespace py = pybind11;
+
+void bind_scenario(py::module& m)
+{
+    using gr::rfseek::scenario;
+    m.attr("SPEED_OF_LIGHT") = gr::rfseek::SPEED_OF_LIGHT;
+
+    py::class_<scenario> c(m,
+                           "scenario",
+                           "All parameters of a simulated run. Defaults: the reference "
+                           "scenario (paper Table I + DESIGN.md). Fields set to None are "
+                           "drawn from the seed. scenario(**fields) sets fields by name.");
+    c.def(py::init([](const py::kwargs& kw) {
+        scenario s;
+        py::object self = py::cast(&s, py::return_value_policy::reference);
+        const auto keys = scenario::keys();
+        for (const auto& item : kw) {
+            const auto key = py::cast<std::string>(item.first);
+            if (std::find(keys.begin(), keys.end(), key) == keys.end())
+                throw py::type_error("scenario() got an unexpected keyword argument '" +
+                                     key + "'");
+            py::setattr(self, key.c_str(), item.second);
+        }
+        return s;
+    }));
+#define RW(NAME, DOC) c.def_readwrite(#NAME, &scenario::NAME, DOC)
+    RW(initial_distance_m, "d: UAV to emitter at start (m)");
+    RW(start_angle_rad, "alpha: UAV polar angle around the emitter (None: from seed)");
+    RW(start_heading_rad, "initial heading (None: from seed)");
+    RW(num_scatterers, "L: scatterer count");
+    RW(scatterer_inner_radius_m, "R_in (m)");
+    RW(scatterer_outer_radius_m, "R (m)");
+    RW(gamma_min, "lower bound of |Gamma_i|");
+    RW(gamma_max, "upper bound of |Gamma_i|");
+    RW(carrier_hz, "f_c (Hz)");
+    RW(samp_rate_hz, "1/Ts (Hz)");
+    RW(window_len, "N: beacon samples");
+    RW(slot_period_s, "T_slot (s)");
+    RW(fft_len, "N_FFT");
+    RW(snr_db, "mean per-sample SNR at the initial distance (dB)");
+    RW(noise_power_db, "sigma_n^2 (dB)");
+    RW(add_noise, "False: noise-free samples");
+    RW(cfo_hz, "initial CFO f_o(0) (None: uniform in +-cfo_range_hz)");
+    RW(cfo_range_hz, "range of the random initial CFO (Hz)");
+    RW(cfo_drift_hz_per_s, "linear CFO drift a (None: uniform in +-range)");
+    RW(cfo_drift_range_hz_per_s, "range of the random drift (Hz/s)");
+    RW(cfo_walk_hz_per_sqrt_s, "CFO random-walk strength (Hz/sqrt(s))");
+    RW(speed_mps, "v (m/s)");
+    RW(heading_noise_rad, "sigma_phi: heading measurement noise (rad)");
+    RW(turn_rate_rad_per_s, "maximum turn rate (rad/s); 0 = instantaneous");
+    RW(success_radius_m, "d_v (m)");
+    RW(flight_cap_m, "flight cap (m); None = 4 (d - d_v)");
+    RW(seed, "seed of every random draw of the run");
+#undef RW
+    c.def("validate", &scenario::validate, "Raise ValueError naming a bad field.")
+        .def_property_readonly("wavelength_m", &scenario::wavelength_m)
+        .def_property_readonly("max_doppler_hz", &scenario::max_doppler_hz)
+        .def_property_readonly("slot_samples", &scenario::slot_samples)
+        .def_property_readonly("window_duration_s", &scenario::window_duration_s)
+        .def_property_readonly("shortest_path_m", &scenario::shortest_path_m)
+        .def_property_readonly("effective_flight_cap_m", &scenario::effective_flight_cap_m)
+        .def_static("keys", &scenario::keys)
+        .def("set", &scenario::set, py::arg("key"), py::arg("value"))
+        .def("get", &scenario::get, py::arg("key"))
+        .def("to_json", &scenario::to_json)
+        .def("copy", [](const scenario& s) { return scenario(s); })
+        .def("__repr__", [](const scenario& s) { return "rfseek.scenario(" + s.to_json() + ")"; });
+}

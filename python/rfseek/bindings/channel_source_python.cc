@@ -4,7 +4,7 @@
  */
 
 /* BINDTOOL_HEADER_FILE(channel_source.h) */
-/* BINDTOOL_HEADER_FILE_HASH(0) */
+/* BINDTOOL_HEADER_FILE_HASH(33fece177fd119562fee8b6423e31a5a) */
 
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>

@@ -4,7 +4,7 @@
  */
 
 /* BINDTOOL_HEADER_FILE(rng.h) */
-/* BINDTOOL_HEADER_FILE_HASH(0) */
+/* BINDTOOL_HEADER_FILE_HASH(b1c4551e0df6611a81e981a71e886d3f) */
 
 #include <pybind11/pybind11.h>
 #include <gr-rfseek/rng.h>

@@ -4,7 +4,7 @@
  */
 
 /* BINDTOOL_HEADER_FILE(scenario.h) */
-/* BINDTOOL_HEADER_FILE_HASH(0) */
+/* BINDTOOL_HEADER_FILE_HASH(c76ca0767ba802214ebbf5f3dc64cbb5) */
 
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>

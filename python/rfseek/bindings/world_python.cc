@@ -4,7 +4,7 @@
  */
 
 /* BINDTOOL_HEADER_FILE(world.h) */
-/* BINDTOOL_HEADER_FILE_HASH(0) */
+/* BINDTOOL_HEADER_FILE_HASH(8d98abf65bde2eaece3c60c8ac5fabe6) */
 
 #include <pybind11/complex.h>
 #include <pybind11/numpy.h>

@@ -1,0 +1,181 @@
+#!/usr/bin/python3
+#
+# Copyright 2026 gr-rfseek authors.
+# SPDX-License-Identifier: GPL-3.0-or-later
+#
+"""channel_source in closed loop from Python: lockstep, reproducibility from the seed,
+malformed commands, termination at d_v, and parameter errors as ValueError."""
+
+import math
+
+import numpy as np
+import pmt
+from gnuradio import blocks, gr, gr_unittest
+from gnuradio import rfseek
+
+
+class pilot(gr.basic_block):
+    """Answers every state message with a cmd (the controller's role in a closed loop);
+    optionally sends a malformed message first on chosen slots."""
+
+    def __init__(self, heading_of_slot, junk=None):
+        gr.basic_block.__init__(self, "pilot", [], [])
+        self.message_port_register_in(pmt.intern("state"))
+        self.message_port_register_out(pmt.intern("cmd"))
+        self.set_msg_handler(pmt.intern("state"), self.handle)
+        self.heading_of_slot = heading_of_slot
+        self.junk = junk or {}
+        self.states = []
+
+    def handle(self, msg):
+        state = pmt.to_python(msg)
+        self.states.append(state)
+        if state["arrived"] or state["capped"]:
+            return
+        slot = state["slot"]
+        if slot in self.junk:
+            self.message_port_pub(pmt.intern("cmd"), self.junk[slot])
+        cmd = pmt.make_dict()
+        cmd = pmt.dict_add(cmd, pmt.intern("heading"),
+                           pmt.from_double(self.heading_of_slot(slot)))
+        cmd = pmt.dict_add(cmd, pmt.intern("slot"), pmt.from_uint64(slot))
+        self.message_port_pub(pmt.intern("cmd"), cmd)
+
+
+def scenario(**kw):
+    sc = rfseek.scenario(initial_distance_m=230.0, start_angle_rad=0.0,
+                         start_heading_rad=math.pi, seed=3)
+    for k, v in kw.items():
+        setattr(sc, k, v)
+    return sc
+
+
+def run_loop(sc, heading_of_slot, mode="burst", junk=None):
+    tb = gr.top_block()
+    src = rfseek.channel_source(sc, mode=mode, lockstep=True, realtime=False)
+    snk = blocks.vector_sink_c()
+    p = pilot(heading_of_slot, junk)
+    tb.connect(src, snk)
+    tb.msg_connect(src, "state", p, "state")
+    tb.msg_connect(p, "cmd", src, "cmd")
+    tb.run()
+    return src, snk, p
+
+
+class qa_channel_source(gr_unittest.TestCase):
+
+    def test_lockstep_loop_flies_the_commands_and_ends_at_dv(self):
+        # Zig-zag toward the emitter: heading pi +- 0.3 alternating every 5 slots.
+        def heading(k):
+            return math.pi + (0.3 if (k // 5) % 2 else -0.3)
+        sc = scenario()
+        src, snk, p = run_loop(sc, heading)
+        # Replay the same commands on the core world: same samples, same path.
+        w = rfseek.world(sc)
+        chunks = []
+        while not w.finished:
+            chunks.append(w.synthesize(sc.window_len))
+            w.advance(heading(w.slot))
+        ref = np.concatenate(chunks)
+        data = np.array(snk.data(), dtype=np.complex64)
+        self.assertEqual(len(data), len(ref))
+        self.assertTrue(np.array_equal(data, ref))
+        self.assertTrue(p.states[-1]["arrived"])
+        self.assertLessEqual(p.states[-1]["distance"], sc.success_radius_m)
+        self.assertEqual(p.states[-1]["slot"], w.slot)
+        self.assertAlmostEqual(p.states[-1]["x"], w.x_m, places=9)
+        # One beacon tag per slot, on its first sample, with slot and time.
+        tags = [t for t in snk.tags() if pmt.symbol_to_string(t.key) == "rfseek_beacon"]
+        self.assertEqual(len(tags), w.slot)
+        for k, t in enumerate(tags):
+            v = pmt.to_python(t.value)
+            self.assertEqual(t.offset, k * sc.window_len)
+            self.assertEqual(v["slot"], k)
+            self.assertAlmostEqual(v["time"], k * sc.slot_period_s, places=12)
+        # The truth says the UAV turned as commanded (instantaneous turns).
+        for s in p.states[1:-1]:
+            self.assertAlmostEqual(rfseek.world.wrap(s["heading"] - heading(s["slot"] - 1)),
+                                   0.0, places=9)
+
+    def test_same_seed_same_stream_other_seed_differs(self):
+        h = lambda k: math.pi + 0.1
+        a = np.array(run_loop(scenario(), h)[1].data())
+        b = np.array(run_loop(scenario(), h)[1].data())
+        c = np.array(run_loop(scenario(seed=4), h)[1].data())
+        self.assertTrue(np.array_equal(a, b))
+        self.assertFalse(np.array_equal(a[:len(c)], c[:len(a)]))
+
+    def test_malformed_cmds_are_dropped_and_counted(self):
+        junk = {
+            2: pmt.intern("turn left"),                                     # not a dict
+            4: pmt.dict_add(pmt.make_dict(), pmt.intern("hdg"), pmt.from_double(1.0)),
+            6: pmt.dict_add(pmt.make_dict(), pmt.intern("heading"), pmt.intern("north")),
+            8: pmt.dict_add(pmt.make_dict(), pmt.intern("heading"), pmt.from_double(float("nan"))),
+            10: pmt.dict_add(pmt.dict_add(pmt.make_dict(), pmt.intern("heading"),
+                                          pmt.from_double(0.0)),
+                             pmt.intern("slot"), pmt.from_double(1.5)),
+        }
+        sc = scenario()
+        src, snk, p = run_loop(sc, lambda k: math.pi, junk=junk)
+        self.assertEqual(src.malformed_count(), len(junk))
+        self.assertTrue(p.states[-1]["arrived"])
+        # Nothing malformed moved the UAV: straight in, 60 slots for 30 m.
+        self.assertEqual(p.states[-1]["slot"], 60)
+
+    def test_stale_cmd_is_ignored(self):
+        # A cmd for an earlier slot (here: slot - 1, heading away) must not be applied.
+        stale = {k: pmt.dict_add(pmt.dict_add(pmt.make_dict(), pmt.intern("heading"),
+                                              pmt.from_double(0.0)),
+                                 pmt.intern("slot"), pmt.from_uint64(k - 1))
+                 for k in range(1, 50)}
+        src, snk, p = run_loop(scenario(), lambda k: math.pi, junk=stale)
+        self.assertEqual(src.stale_count(), 49)
+        self.assertEqual(p.states[-1]["slot"], 60)
+
+    def test_continuous_mode_slot_length(self):
+        sc = scenario(initial_distance_m=205.0)
+        src, snk, p = run_loop(sc, lambda k: math.pi, mode="continuous")
+        self.assertEqual(len(snk.data()), 10 * sc.slot_samples)
+
+    def test_state_message_truth(self):
+        sc = scenario(initial_distance_m=205.0, cfo_hz=123.0, cfo_drift_hz_per_s=0.0,
+                      cfo_walk_hz_per_sqrt_s=0.0)
+        src, snk, p = run_loop(sc, lambda k: math.pi)
+        s0 = p.states[0]
+        for key in ("slot", "time", "x", "y", "heading", "measured_heading", "distance",
+                    "distance_flown", "cfo_hz", "doppler_hz", "snr_db", "power_db",
+                    "arrived", "capped"):
+            self.assertIn(key, s0)
+        self.assertAlmostEqual(s0["distance"], 205.0)
+        self.assertAlmostEqual(s0["cfo_hz"], 123.0)
+        self.assertAlmostEqual(s0["doppler_hz"], sc.max_doppler_hz)
+        self.assertEqual(len(p.states), 11)
+
+    def test_bad_parameters_raise_value_error(self):
+        with self.assertRaisesRegex(ValueError, "scenario.snr_db"):
+            rfseek.channel_source(scenario(snr_db=float("nan")))
+        with self.assertRaisesRegex(ValueError, "scenario.window_len"):
+            rfseek.channel_source(scenario(window_len=1))
+        with self.assertRaisesRegex(ValueError, "mode"):
+            rfseek.channel_source(scenario(), mode="pulsed")
+        with self.assertRaisesRegex(ValueError, "scenario.speed_mps"):
+            rfseek.world(scenario(speed_mps=-1.0))
+        src = rfseek.channel_source(scenario())
+        with self.assertRaisesRegex(ValueError, "scenario.heading_noise_rad"):
+            src.set_heading_noise_rad(-1.0)
+
+    def test_setters_take_effect(self):
+        src = rfseek.channel_source(scenario(), lockstep=True)
+        src.set_snr_db(12.0)
+        self.assertEqual(src.config().snr_db, 12.0)
+        src.set_turn_rate_rad_per_s(0.5)
+        self.assertEqual(src.config().turn_rate_rad_per_s, 0.5)
+        src.set_lockstep(False)
+        self.assertFalse(src.lockstep())
+        src.set_realtime(True)
+        self.assertTrue(src.realtime())
+        self.assertEqual(src.mode(), "burst")
+
+
+if __name__ == "__main__":
+    gr_unittest.run(qa_channel_source)

@@ -1,0 +1,57 @@
+#!/usr/bin/python3
+#
+# Copyright 2026 gr-rfseek authors.
+# SPDX-License-Identifier: GPL-3.0-or-later
+#
+"""scenario and world from Python: readable attributes, keyword construction, None for
+seed-drawn fields, ValueError naming the field, numpy samples."""
+
+import json
+import math
+
+import numpy as np
+from gnuradio import gr_unittest
+from gnuradio import rfseek
+
+
+class qa_scenario(gr_unittest.TestCase):
+
+    def test_defaults_and_keywords(self):
+        sc = rfseek.scenario()
+        self.assertEqual(sc.initial_distance_m, 5000.0)
+        self.assertIsNone(sc.cfo_hz)
+        self.assertIsNone(sc.start_heading_rad)
+        sc2 = rfseek.scenario(snr_db=-5.0, cfo_hz=10.0, num_scatterers=0)
+        self.assertEqual((sc2.snr_db, sc2.cfo_hz, sc2.num_scatterers), (-5.0, 10.0, 0))
+        with self.assertRaises(TypeError):
+            rfseek.scenario(snr=3)
+        self.assertAlmostEqual(sc.max_doppler_hz, 10 * 2e9 / rfseek.SPEED_OF_LIGHT)
+        self.assertEqual(set(json.loads(sc.to_json()).keys()), set(rfseek.scenario.keys()))
+
+    def test_value_error_names_field(self):
+        for key, bad in (("initial_distance_m", -1.0), ("fft_len", 2), ("gamma_max", 2.0),
+                         ("samp_rate_hz", 0.0), ("cfo_hz", 1e6)):
+            sc = rfseek.scenario()
+            setattr(sc, key, bad)
+            with self.assertRaisesRegex(ValueError, "scenario." + key):
+                sc.validate()
+
+    def test_world_from_python(self):
+        sc = rfseek.scenario(num_scatterers=0, add_noise=False, cfo_hz=0.0,
+                             cfo_drift_hz_per_s=0.0, cfo_walk_hz_per_sqrt_s=0.0,
+                             start_angle_rad=math.pi / 2, start_heading_rad=-math.pi / 2)
+        w = rfseek.world(sc)
+        x = w.synthesize(sc.window_len)
+        self.assertEqual(x.dtype, np.complex64)
+        f = np.angle(np.vdot(x[:-1], x[1:])) / (2 * np.pi) * sc.samp_rate_hz
+        self.assertAlmostEqual(f, sc.max_doppler_hz, delta=0.05)
+        self.assertEqual(len(w.paths()), 1)
+        self.assertAlmostEqual(abs(w.field()), 1.0 / 5000.0)
+        w.advance(-math.pi / 2)
+        self.assertAlmostEqual(w.distance_m, 5000.0 - 0.5)
+        with self.assertRaises(ValueError):
+            w.advance(float("nan"))
+
+
+if __name__ == "__main__":
+    gr_unittest.run(qa_scenario)

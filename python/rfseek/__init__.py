@@ -16,3 +16,18 @@ import math as _math
 def deg(x):
     """Degrees to radians (the module's angles are radians, CCW from +x)."""
     return _math.radians(x)
+
+
+def deg_or_none(x):
+    """Degrees to radians, keeping None (= drawn from the seed). For GRC parameters."""
+    return None if x is None else _math.radians(x)
+
+
+def scenario_from(**fields):
+    """A scenario with the given fields set; None values mean "drawn from the seed"."""
+    sc = scenario()
+    for key, value in fields.items():
+        if key not in scenario.keys():
+            raise TypeError("unknown scenario field '%s'" % key)
+        setattr(sc, key, value)
+    return sc

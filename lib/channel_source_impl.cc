@@ -114,10 +114,11 @@ void channel_source_impl::handle_cmd(const pmt::pmt_t& msg)
             return;
         }
         const long long k = pmt::is_uint64(s) ? static_cast<long long>(pmt::to_uint64(s))
-                                               : pmt::to_long(s);
+                                              : pmt::to_long(s);
         if (k != static_cast<long long>(d_world.slot())) {
             ++d_stale;
-            d_logger->debug("cmd for slot {} ignored: current slot is {}", k, d_world.slot());
+            d_logger->debug(
+                "cmd for slot {} ignored: current slot is {}", k, d_world.slot());
             return;
         }
     }
@@ -134,9 +135,11 @@ void channel_source_impl::publish_state()
     d = pmt::dict_add(d, pmt::mp("x"), pmt::from_double(w.x_m()));
     d = pmt::dict_add(d, pmt::mp("y"), pmt::from_double(w.y_m()));
     d = pmt::dict_add(d, d_key_heading, pmt::from_double(w.heading_rad()));
-    d = pmt::dict_add(d, pmt::mp("measured_heading"), pmt::from_double(w.measured_heading_rad()));
+    d = pmt::dict_add(
+        d, pmt::mp("measured_heading"), pmt::from_double(w.measured_heading_rad()));
     d = pmt::dict_add(d, pmt::mp("distance"), pmt::from_double(w.distance_m()));
-    d = pmt::dict_add(d, pmt::mp("distance_flown"), pmt::from_double(w.distance_flown_m()));
+    d = pmt::dict_add(
+        d, pmt::mp("distance_flown"), pmt::from_double(w.distance_flown_m()));
     d = pmt::dict_add(d, pmt::mp("cfo_hz"), pmt::from_double(w.cfo_hz()));
     d = pmt::dict_add(d, pmt::mp("doppler_hz"), pmt::from_double(w.los_doppler_hz()));
     d = pmt::dict_add(d, pmt::mp("snr_db"), pmt::from_double(w.snr_db()));
@@ -193,20 +196,22 @@ int channel_source_impl::work(int noutput_items,
                 d_world.advance(d_cmd_heading);
                 if (d_world.finished()) {
                     publish_state();
-                    d_logger->info("{} at slot {} after {:.1f} m flown, {:.1f} m from the "
-                                   "emitter",
-                                   d_world.arrived() ? "arrived" : "flight cap reached",
-                                   d_world.slot(),
-                                   d_world.distance_flown_m(),
-                                   d_world.distance_m());
+                    d_logger->info(
+                        "{} at slot {} after {:.1f} m flown, {:.1f} m from the "
+                        "emitter",
+                        d_world.arrived() ? "arrived" : "flight cap reached",
+                        d_world.slot(),
+                        d_world.distance_flown_m(),
+                        d_world.distance_m());
                     d_done = true;
                     break;
                 }
             }
             if (d_realtime) {
-                const auto due = d_t0 + std::chrono::duration_cast<
-                                            std::chrono::steady_clock::duration>(
-                                            std::chrono::duration<double>(d_world.time_s()));
+                const auto due =
+                    d_t0 +
+                    std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                        std::chrono::duration<double>(d_world.time_s()));
                 if (std::chrono::steady_clock::now() < due) {
                     if (produced > 0)
                         break;

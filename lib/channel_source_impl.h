@@ -44,7 +44,10 @@ public:
     void set_realtime(bool realtime) override;
 
 private:
-    gr::thread::mutex& setlock() const { return const_cast<gr::thread::mutex&>(d_setlock); }
+    gr::thread::mutex& setlock() const
+    {
+        return const_cast<gr::thread::mutex&>(d_setlock);
+    }
     void handle_cmd(const pmt::pmt_t& msg);
     void drop(const std::string& kind, const pmt::pmt_t& msg);
     void begin_slot(std::uint64_t offset);

@@ -7,8 +7,8 @@
  */
 
 #include <gr-rfseek/scenario.h>
-#include <charconv>
 #include <cerrno>
+#include <charconv>
 #include <cmath>
 #include <cstdlib>
 #include <functional>
@@ -80,8 +80,11 @@ struct field {
     std::function<void*(scenario&)> ptr;
 };
 
-#define RFSEEK_FIELD(NAME, KIND) \
-    field { #NAME, KIND, [](scenario& s) -> void* { return &s.NAME; } }
+#define RFSEEK_FIELD(NAME, KIND)                                   \
+    field                                                          \
+    {                                                              \
+#NAME, KIND, [](scenario & s) -> void* { return &s.NAME; } \
+    }
 
 const std::vector<field>& fields()
 {
@@ -185,7 +188,9 @@ void scenario::validate() const
     if (cfo_hz) {
         require_finite("cfo_hz", *cfo_hz);
         if (std::abs(*cfo_hz) + fd >= nyquist)
-            bad("cfo_hz", *cfo_hz, "in +-" + fmt_num(nyquist - fd) + " Hz (inside the band)");
+            bad("cfo_hz",
+                *cfo_hz,
+                "in +-" + fmt_num(nyquist - fd) + " Hz (inside the band)");
     }
     if (cfo_drift_hz_per_s)
         require_range("cfo_drift_hz_per_s", *cfo_drift_hz_per_s, -1.0e4, 1.0e4);

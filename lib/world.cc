@@ -85,7 +85,10 @@ void world::update_amplitude()
     d_amp = std::sqrt(target / mean_field_power(d_sc.initial_distance_m));
 }
 
-double world::mean_power_at(double d) const { return d_amp * d_amp * mean_field_power(d); }
+double world::mean_power_at(double d) const
+{
+    return d_amp * d_amp * mean_field_power(d);
+}
 
 double world::mean_field_power(double d) const
 {
@@ -129,9 +132,10 @@ std::vector<path_state> world::paths() const
         const double ri = std::hypot(d_x - s.x_m, d_y - s.y_m);
         const double L = di + ri;
         const double psi = std::atan2(s.y_m - d_y, s.x_m - d_x);
-        out.push_back({ d_amp * s.gamma * std::polar(1.0 / L, -std::fmod(beta * L, TWO_PI)),
-                        fd * std::cos(d_heading - psi),
-                        L });
+        out.push_back(
+            { d_amp * s.gamma * std::polar(1.0 / L, -std::fmod(beta * L, TWO_PI)),
+              fd * std::cos(d_heading - psi),
+              L });
     }
     return out;
 }
@@ -210,7 +214,8 @@ void world::advance(double commanded_heading_rad)
     if (!std::isfinite(commanded_heading_rad))
         throw std::invalid_argument("world::advance: commanded heading must be finite");
     if (finished())
-        throw std::logic_error("world::advance: the run has finished (arrived or capped)");
+        throw std::logic_error(
+            "world::advance: the run has finished (arrived or capped)");
 
     const double dt = d_sc.slot_period_s;
     const double v = d_sc.speed_mps;
@@ -245,7 +250,8 @@ void world::advance(double commanded_heading_rad)
     d_cfo_phase =
         wrap(d_cfo_phase + TWO_PI * (d_cfo_hz * dt + 0.5 * d_cfo_drift * dt * dt));
     rng g(d_sc.seed, STREAM_CFO_WALK, d_slot);
-    d_cfo_hz += d_cfo_drift * dt + d_sc.cfo_walk_hz_per_sqrt_s * std::sqrt(dt) * g.normal();
+    d_cfo_hz +=
+        d_cfo_drift * dt + d_sc.cfo_walk_hz_per_sqrt_s * std::sqrt(dt) * g.normal();
 
     ++d_slot;
     d_arrived = distance_m() <= d_sc.success_radius_m;

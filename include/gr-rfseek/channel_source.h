@@ -30,10 +30,10 @@ namespace rfseek {
  * heading (measured)}; like uhd.usrp_source, sample 0 carries rx_time, rx_rate and
  * rx_freq (in burst mode every burst carries rx_time).
  *
- * Message in "cmd": dict {heading (rad), optional slot}: the heading to fly; the UAV turns
- * toward it at most at the turn rate. Message out "state": per-slot truth {slot, time, x,
- * y, heading, measured_heading, distance, distance_flown, cfo_hz, doppler_hz, snr_db,
- * power_db, arrived, capped} for logs and plots (never for the controller).
+ * Message in "cmd": dict {heading (rad), optional slot}: the heading to fly; the UAV
+ * turns toward it at most at the turn rate. Message out "state": per-slot truth {slot,
+ * time, x, y, heading, measured_heading, distance, distance_flown, cfo_hz, doppler_hz,
+ * snr_db, power_db, arrived, capped} for logs and plots (never for the controller).
  *
  * lockstep (default): slot k+1 is produced only after the cmd for slot k arrived, so a
  * run is reproducible from its seed. Otherwise the source runs free and applies the

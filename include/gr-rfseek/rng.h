@@ -29,7 +29,8 @@ public:
 
     void reseed(std::uint64_t seed, std::uint64_t stream = 0, std::uint64_t index = 0)
     {
-        std::uint64_t x = seed ^ mix(stream * 0x9E3779B97F4A7C15ULL + 0x632BE59BD9B4E019ULL) ^
+        std::uint64_t x = seed ^
+                          mix(stream * 0x9E3779B97F4A7C15ULL + 0x632BE59BD9B4E019ULL) ^
                           mix(index + 0x8CB92BA72F3D8DD7ULL);
         for (auto& si : d_s)
             si = splitmix(x);
@@ -73,7 +74,10 @@ public:
     }
 
 private:
-    static std::uint64_t rotl(std::uint64_t x, int k) { return (x << k) | (x >> (64 - k)); }
+    static std::uint64_t rotl(std::uint64_t x, int k)
+    {
+        return (x << k) | (x >> (64 - k));
+    }
     static std::uint64_t mix(std::uint64_t z)
     {
         z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;

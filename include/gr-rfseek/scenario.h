@@ -31,36 +31,37 @@ constexpr double SPEED_OF_LIGHT = 299792458.0;
  */
 struct RFSEEK_API scenario {
     // Geometry
-    double initial_distance_m = 5000.0;          //!< d: UAV to emitter at start
-    std::optional<double> start_angle_rad;       //!< alpha: UAV polar angle around emitter
-    std::optional<double> start_heading_rad;     //!< phi at slot 0
-    int num_scatterers = 10;                     //!< L
-    double scatterer_inner_radius_m = 100.0;     //!< R_in
-    double scatterer_outer_radius_m = 200.0;     //!< R
-    double gamma_min = 0.3;                      //!< |Gamma_i| lower bound
-    double gamma_max = 0.7;                      //!< |Gamma_i| upper bound
+    double initial_distance_m = 5000.0;      //!< d: UAV to emitter at start
+    std::optional<double> start_angle_rad;   //!< alpha: UAV polar angle around emitter
+    std::optional<double> start_heading_rad; //!< phi at slot 0
+    int num_scatterers = 10;                 //!< L
+    double scatterer_inner_radius_m = 100.0; //!< R_in
+    double scatterer_outer_radius_m = 200.0; //!< R
+    double gamma_min = 0.3;                  //!< |Gamma_i| lower bound
+    double gamma_max = 0.7;                  //!< |Gamma_i| upper bound
     // Radio
-    double carrier_hz = 2.0e9;                   //!< f_c
-    double samp_rate_hz = 1.0e5;                 //!< 1 / Ts
-    int window_len = 1000;                       //!< N: beacon samples
-    double slot_period_s = 0.05;                 //!< T_slot
-    int fft_len = 4096;                          //!< N_FFT
-    double snr_db = 0.0;                         //!< mean per-sample SNR at initial distance
-    double noise_power_db = -70.0;               //!< sigma_n^2 (complex noise power)
-    bool add_noise = true;                       //!< false: noise-free samples
+    double carrier_hz = 2.0e9;     //!< f_c
+    double samp_rate_hz = 1.0e5;   //!< 1 / Ts
+    int window_len = 1000;         //!< N: beacon samples
+    double slot_period_s = 0.05;   //!< T_slot
+    int fft_len = 4096;            //!< N_FFT
+    double snr_db = 0.0;           //!< mean per-sample SNR at initial distance
+    double noise_power_db = -70.0; //!< sigma_n^2 (complex noise power)
+    bool add_noise = true;         //!< false: noise-free samples
     // Carrier frequency offset f_o(t) = f_o(0) + a t + random walk
-    std::optional<double> cfo_hz;                //!< f_o(0); drawn in +-cfo_range_hz
+    std::optional<double> cfo_hz; //!< f_o(0); drawn in +-cfo_range_hz
     double cfo_range_hz = 1000.0;
-    std::optional<double> cfo_drift_hz_per_s;    //!< a; drawn in +-cfo_drift_range
+    std::optional<double> cfo_drift_hz_per_s; //!< a; drawn in +-cfo_drift_range
     double cfo_drift_range_hz_per_s = 0.5;
-    double cfo_walk_hz_per_sqrt_s = 0.1;         //!< random-walk strength q
+    double cfo_walk_hz_per_sqrt_s = 0.1; //!< random-walk strength q
     // Vehicle
-    double speed_mps = 10.0;                     //!< v (constant)
-    double heading_noise_rad = 0.034906585039886591; //!< sigma_phi (2 deg), white per slot
-    double turn_rate_rad_per_s = 0.0;            //!< 0 = instantaneous turns (paper)
+    double speed_mps = 10.0; //!< v (constant)
+    double heading_noise_rad =
+        0.034906585039886591;         //!< sigma_phi (2 deg), white per slot
+    double turn_rate_rad_per_s = 0.0; //!< 0 = instantaneous turns (paper)
     // Run
-    double success_radius_m = 200.0;             //!< d_v
-    std::optional<double> flight_cap_m;          //!< default 4 (d - d_v)
+    double success_radius_m = 200.0;    //!< d_v
+    std::optional<double> flight_cap_m; //!< default 4 (d - d_v)
     std::uint64_t seed = 1;
 
     //! Throws std::invalid_argument("scenario.<field> = <value>: must be ...").
@@ -69,7 +70,7 @@ struct RFSEEK_API scenario {
     //! Derived quantities.
     double wavelength_m() const { return SPEED_OF_LIGHT / carrier_hz; }
     double max_doppler_hz() const { return speed_mps * carrier_hz / SPEED_OF_LIGHT; }
-    int slot_samples() const;                    //!< round(T_slot * fs)
+    int slot_samples() const; //!< round(T_slot * fs)
     double window_duration_s() const { return window_len / samp_rate_hz; }
     double shortest_path_m() const { return initial_distance_m - success_radius_m; }
     double effective_flight_cap_m() const;

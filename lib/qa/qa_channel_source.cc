@@ -43,9 +43,8 @@ TEST(channel_source, free_running_burst_matches_core_world)
     for (int k = 0; k < 20; ++k) {
         const auto x = w.synthesize(s.window_len);
         EXPECT_EQ(0,
-                  std::memcmp(x.data(),
-                              data.data() + k * s.window_len,
-                              x.size() * sizeof(x[0])))
+                  std::memcmp(
+                      x.data(), data.data() + k * s.window_len, x.size() * sizeof(x[0])))
             << "slot " << k;
         w.advance(w.heading_rad());
     }
@@ -55,11 +54,14 @@ TEST(channel_source, free_running_burst_matches_core_world)
     for (const auto& t : snk->tags()) {
         const std::string key = pmt::symbol_to_string(t.key);
         if (key == "rfseek_beacon") {
-            const auto slot = pmt::to_uint64(pmt::dict_ref(t.value, pmt::mp("slot"), pmt::PMT_NIL));
+            const auto slot =
+                pmt::to_uint64(pmt::dict_ref(t.value, pmt::mp("slot"), pmt::PMT_NIL));
             EXPECT_EQ(t.offset, slot * s.window_len);
-            EXPECT_DOUBLE_EQ(pmt::to_double(pmt::dict_ref(t.value, pmt::mp("time"), pmt::PMT_NIL)),
-                             slot * s.slot_period_s);
-            EXPECT_TRUE(pmt::is_real(pmt::dict_ref(t.value, pmt::mp("heading"), pmt::PMT_NIL)));
+            EXPECT_DOUBLE_EQ(
+                pmt::to_double(pmt::dict_ref(t.value, pmt::mp("time"), pmt::PMT_NIL)),
+                slot * s.slot_period_s);
+            EXPECT_TRUE(
+                pmt::is_real(pmt::dict_ref(t.value, pmt::mp("heading"), pmt::PMT_NIL)));
             ++beacons;
         } else if (key == "rx_time") {
             ++rx_time;

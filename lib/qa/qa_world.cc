@@ -78,7 +78,8 @@ TEST(world, los_tone_is_the_doppler_of_the_geometry)
         const double f = phase_increment_hz(x, x.size(), s.samp_rate_hz);
         // Angle between the velocity and the direction toward the emitter, from x, y.
         const double to_emitter = std::atan2(-w.y_m(), -w.x_m());
-        const double expected = 2e9 * 10.0 / C * std::cos(*s.start_heading_rad - to_emitter);
+        const double expected =
+            2e9 * 10.0 / C * std::cos(*s.start_heading_rad - to_emitter);
         EXPECT_NEAR(f, expected, 0.05) << "heading " << heading_deg;
         EXPECT_NEAR(w.los_doppler_hz(), expected, 1e-9);
     }
@@ -91,7 +92,8 @@ TEST(world, approaching_gives_positive_doppler)
     s.start_heading_rad = M_PI; // toward the emitter at the origin
     world w(s);
     const cvec x = w.synthesize(1000);
-    EXPECT_NEAR(phase_increment_hz(x, x.size(), s.samp_rate_hz), s.max_doppler_hz(), 0.05);
+    EXPECT_NEAR(
+        phase_increment_hz(x, x.size(), s.samp_rate_hz), s.max_doppler_hz(), 0.05);
 }
 
 TEST(world, mean_power_follows_inverse_square_law)
@@ -204,7 +206,8 @@ TEST(world, cfo_follows_offset_and_linear_drift)
     for (int k = 0; k < K; ++k) {
         const cvec x = w.synthesize(s.window_len);
         const double to_emitter = std::atan2(-w.y_m(), -w.x_m());
-        const double doppler = s.max_doppler_hz() * std::cos(w.heading_rad() - to_emitter);
+        const double doppler =
+            s.max_doppler_hz() * std::cos(w.heading_rad() - to_emitter);
         t[k] = w.time_s() + 0.5 * s.window_duration_s();
         f[k] = phase_increment_hz(x, x.size(), s.samp_rate_hz) - doppler;
         w.advance(*s.start_heading_rad);
@@ -279,15 +282,17 @@ TEST(world, turn_rate_limit_and_circle_closure)
         EXPECT_LE(std::abs(world::wrap(w.heading_rad() - h0)), max_step + 1e-12);
         EXPECT_LE(std::hypot(w.x_m() - x0, w.y_m() - y0), 0.5 + 1e-12);
     }
-    // Always commanding 90 deg left of the heading flies a circle of radius v / omega that
-    // closes after 2 pi / omega = 12 s (240 slots).
+    // Always commanding 90 deg left of the heading flies a circle of radius v / omega
+    // that closes after 2 pi / omega = 12 s (240 slots).
     scenario c = s;
     world cw(c);
     const double x0 = cw.x_m(), y0 = cw.y_m();
     double max_r = 0.0;
     for (int k = 0; k < 240; ++k) {
         cw.advance(cw.heading_rad() + M_PI / 2);
-        max_r = std::max(max_r, std::hypot(cw.x_m() - x0, cw.y_m() - (y0 + 10.0 / c.turn_rate_rad_per_s)));
+        max_r = std::max(
+            max_r,
+            std::hypot(cw.x_m() - x0, cw.y_m() - (y0 + 10.0 / c.turn_rate_rad_per_s)));
     }
     EXPECT_NEAR(cw.x_m(), x0, 1e-6);
     EXPECT_NEAR(cw.y_m(), y0, 1e-6);

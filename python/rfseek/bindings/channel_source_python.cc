@@ -4,11 +4,11 @@
  */
 
 /* BINDTOOL_HEADER_FILE(channel_source.h) */
-/* BINDTOOL_HEADER_FILE_HASH(33fece177fd119562fee8b6423e31a5a) */
+/* BINDTOOL_HEADER_FILE_HASH(df549cf85abd47076963d9032b7d960f) */
 
+#include <gr-rfseek/channel_source.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
-#include <gr-rfseek/channel_source.h>
 
 namespace py = pybind11;
 
@@ -36,7 +36,9 @@ void bind_channel_source(py::module& m)
         .def("lockstep", &channel_source::lockstep)
         .def("realtime", &channel_source::realtime)
         .def("set_snr_db", &channel_source::set_snr_db, py::arg("snr_db"))
-        .def("set_heading_noise_rad", &channel_source::set_heading_noise_rad, py::arg("sigma"))
+        .def("set_heading_noise_rad",
+             &channel_source::set_heading_noise_rad,
+             py::arg("sigma"))
         .def("set_turn_rate_rad_per_s",
              &channel_source::set_turn_rate_rad_per_s,
              py::arg("rate"))

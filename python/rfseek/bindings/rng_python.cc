@@ -4,17 +4,18 @@
  */
 
 /* BINDTOOL_HEADER_FILE(rng.h) */
-/* BINDTOOL_HEADER_FILE_HASH(b1c4551e0df6611a81e981a71e886d3f) */
+/* BINDTOOL_HEADER_FILE_HASH(7f9b0d6004011701d1d0606fca89c4bd) */
 
-#include <pybind11/pybind11.h>
 #include <gr-rfseek/rng.h>
+#include <pybind11/pybind11.h>
 
 namespace py = pybind11;
 
 void bind_rng(py::module& m)
 {
     using gr::rfseek::rng;
-    py::class_<rng>(m, "rng", "Run-owned random source (xoshiro256**, seeded per stream).")
+    py::class_<rng>(
+        m, "rng", "Run-owned random source (xoshiro256**, seeded per stream).")
         .def(py::init<std::uint64_t, std::uint64_t, std::uint64_t>(),
              py::arg("seed"),
              py::arg("stream") = 0,

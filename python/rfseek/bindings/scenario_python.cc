@@ -4,11 +4,11 @@
  */
 
 /* BINDTOOL_HEADER_FILE(scenario.h) */
-/* BINDTOOL_HEADER_FILE_HASH(c76ca0767ba802214ebbf5f3dc64cbb5) */
+/* BINDTOOL_HEADER_FILE_HASH(8947323aabd2be787e0364c3d00926fa) */
 
+#include <gr-rfseek/scenario.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
-#include <gr-rfseek/scenario.h>
 #include <algorithm>
 
 namespace py = pybind11;
@@ -18,11 +18,12 @@ void bind_scenario(py::module& m)
     using gr::rfseek::scenario;
     m.attr("SPEED_OF_LIGHT") = gr::rfseek::SPEED_OF_LIGHT;
 
-    py::class_<scenario> c(m,
-                           "scenario",
-                           "All parameters of a simulated run. Defaults: the reference "
-                           "scenario (paper Table I + DESIGN.md). Fields set to None are "
-                           "drawn from the seed. scenario(**fields) sets fields by name.");
+    py::class_<scenario> c(
+        m,
+        "scenario",
+        "All parameters of a simulated run. Defaults: the reference "
+        "scenario (paper Table I + DESIGN.md). Fields set to None are "
+        "drawn from the seed. scenario(**fields) sets fields by name.");
     c.def(py::init([](const py::kwargs& kw) {
         scenario s;
         py::object self = py::cast(&s, py::return_value_policy::reference);
@@ -71,11 +72,13 @@ void bind_scenario(py::module& m)
         .def_property_readonly("slot_samples", &scenario::slot_samples)
         .def_property_readonly("window_duration_s", &scenario::window_duration_s)
         .def_property_readonly("shortest_path_m", &scenario::shortest_path_m)
-        .def_property_readonly("effective_flight_cap_m", &scenario::effective_flight_cap_m)
+        .def_property_readonly("effective_flight_cap_m",
+                               &scenario::effective_flight_cap_m)
         .def_static("keys", &scenario::keys)
         .def("set", &scenario::set, py::arg("key"), py::arg("value"))
         .def("get", &scenario::get, py::arg("key"))
         .def("to_json", &scenario::to_json)
         .def("copy", [](const scenario& s) { return scenario(s); })
-        .def("__repr__", [](const scenario& s) { return "rfseek.scenario(" + s.to_json() + ")"; });
+        .def("__repr__",
+             [](const scenario& s) { return "rfseek.scenario(" + s.to_json() + ")"; });
 }

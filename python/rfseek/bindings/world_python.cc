@@ -6,11 +6,11 @@
 /* BINDTOOL_HEADER_FILE(world.h) */
 /* BINDTOOL_HEADER_FILE_HASH(8d98abf65bde2eaece3c60c8ac5fabe6) */
 
+#include <gr-rfseek/world.h>
 #include <pybind11/complex.h>
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
-#include <gr-rfseek/world.h>
 
 namespace py = pybind11;
 
@@ -26,9 +26,8 @@ void bind_world(py::module& m)
         .def_readonly("doppler_hz", &path_state::doppler_hz)
         .def_readonly("length_m", &path_state::length_m);
 
-    py::class_<world>(m,
-                      "world",
-                      "The simulated physics of one run, slot by slot (paper eq. 1-2).")
+    py::class_<world>(
+        m, "world", "The simulated physics of one run, slot by slot (paper eq. 1-2).")
         .def(py::init<const scenario&>(), py::arg("scenario"))
         .def_property_readonly("config", &world::config)
         .def_property_readonly("scatterers", &world::scatterers)

@@ -188,25 +188,26 @@ int channel_source_impl::work(int noutput_items,
     int produced = 0;
 
     while (produced < noutput_items && !d_done) {
-        if (!d_started || d_pos == d_buf.size()) {
-            if (d_started) {
-                if (d_lockstep && !d_have_cmd)
-                    break; // parked until the cmd for this slot arrives
-                d_have_cmd = false;
-                d_world.advance(d_cmd_heading);
-                if (d_world.finished()) {
-                    publish_state();
-                    d_logger->info(
-                        "{} at slot {} after {:.1f} m flown, {:.1f} m from the "
-                        "emitter",
-                        d_world.arrived() ? "arrived" : "flight cap reached",
-                        d_world.slot(),
-                        d_world.distance_flown_m(),
-                        d_world.distance_m());
-                    d_done = true;
-                    break;
-                }
+        if (d_started && !d_next_ready && d_pos == d_buf.size()) {
+            // Slot fully emitted: fly it, with the cmd for it in lockstep.
+            if (d_lockstep && !d_have_cmd)
+                break; // parked until the cmd for this slot arrives
+            d_have_cmd = false;
+            d_world.advance(d_cmd_heading);
+            if (d_world.finished()) {
+                publish_state();
+                d_logger->info("{} at slot {} after {:.1f} m flown, {:.1f} m from the "
+                               "emitter",
+                               d_world.arrived() ? "arrived" : "flight cap reached",
+                               d_world.slot(),
+                               d_world.distance_flown_m(),
+                               d_world.distance_m());
+                d_done = true;
+                break;
             }
+            d_next_ready = true;
+        }
+        if (!d_started || d_next_ready) {
             if (d_realtime) {
                 const auto due =
                     d_t0 +
@@ -221,6 +222,7 @@ int channel_source_impl::work(int noutput_items,
                 }
             }
             d_started = true;
+            d_next_ready = false;
             begin_slot(nitems_written(0) + produced);
         }
         const std::size_t n =

@@ -60,6 +60,7 @@ private:
     std::vector<gr_complex> d_buf;
     std::size_t d_pos = 0;
     bool d_started = false;
+    bool d_next_ready = false; // advanced to a slot not yet begun
     bool d_done = false;
     bool d_have_cmd = false;
     double d_cmd_heading = 0.0;

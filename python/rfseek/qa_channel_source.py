@@ -151,6 +151,21 @@ class qa_channel_source(gr_unittest.TestCase):
         self.assertAlmostEqual(s0["doppler_hz"], sc.max_doppler_hz)
         self.assertEqual(len(p.states), 11)
 
+    def test_free_running_realtime_emits_every_slot_once(self):
+        # Pacing must not skip or repeat slots (10 slots = 0.5 s of real time).
+        sc = scenario(initial_distance_m=205.0)
+        tb = gr.top_block()
+        src = rfseek.channel_source(sc, mode="continuous", lockstep=False, realtime=True)
+        snk = blocks.vector_sink_c()
+        states = blocks.message_debug()
+        tb.connect(src, snk)
+        tb.msg_connect(src, "state", states, "store")
+        tb.run()
+        slots = [pmt.to_python(states.get_message(i))["slot"]
+                 for i in range(states.num_messages())]
+        self.assertEqual(slots, list(range(11)))
+        self.assertEqual(len(snk.data()), 10 * sc.slot_samples)
+
     def test_bad_parameters_raise_value_error(self):
         with self.assertRaisesRegex(ValueError, "scenario.snr_db"):
             rfseek.channel_source(scenario(snr_db=float("nan")))

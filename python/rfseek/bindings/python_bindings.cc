@@ -12,7 +12,9 @@ namespace py = pybind11;
 void bind_rng(py::module& m);
 void bind_scenario(py::module& m);
 void bind_world(py::module& m);
+void bind_tone_estimator(py::module& m);
 void bind_channel_source(py::module& m);
+void bind_doppler_estimator(py::module& m);
 
 PYBIND11_MODULE(rfseek_python, m)
 {
@@ -22,5 +24,7 @@ PYBIND11_MODULE(rfseek_python, m)
     bind_rng(m);
     bind_scenario(m);
     bind_world(m);
+    bind_tone_estimator(m);
     bind_channel_source(m);
+    bind_doppler_estimator(m);
 }

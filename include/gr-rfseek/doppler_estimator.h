@@ -1,0 +1,82 @@
+/* -*- c++ -*- */
+/*
+ * Copyright 2026 gr-rfseek authors.
+ * SPDX-License-Identifier: GPL-3.0-or-later
+ *
+ * doppler_estimator: one frequency measurement per beacon window, as a message. A thin
+ * adapter over gr::rfseek::tone_estimator.
+ */
+
+#ifndef INCLUDED_RFSEEK_DOPPLER_ESTIMATOR_H
+#define INCLUDED_RFSEEK_DOPPLER_ESTIMATOR_H
+
+#include <gnuradio/sync_block.h>
+#include <gr-rfseek/api.h>
+#include <cstdint>
+#include <string>
+
+namespace gr {
+namespace rfseek {
+
+/*!
+ * \brief Windowed, zero-padded FFT frequency estimator with a "meas" message per window.
+ * \ingroup rfseek
+ *
+ * \details
+ * Input: complex64. Windows of window_len samples are taken either on each tag whose key
+ * is tag_key (alignment "tag": the beacons of channel_source or any tagged burst) or
+ * every period samples starting at offset (alignment "periodic": a continuous beacon).
+ * Each window gives one message on "meas": {slot, time, offset, freq_hz, snr_db,
+ * power_db, noise_power_db, valid} plus every field of the aligning tag's dict (heading,
+ * ...). time is the sample clock: from the latest rx_time/rx_rate tags when present, else
+ * offset / samp_rate. slot comes from the tag, else counts windows. A window cut short by
+ * the next tag, or of zero/NaN/Inf samples, gives valid = false with finite placeholders.
+ */
+class RFSEEK_API doppler_estimator : virtual public gr::sync_block
+{
+public:
+    typedef std::shared_ptr<doppler_estimator> sptr;
+
+    /*!
+     * \param samp_rate sample rate (Hz, > 0)
+     * \param window_len N samples per window (3 <= N <= fft_len)
+     * \param fft_len N_FFT (>= 4)
+     * \param window "rectangular", "hann" or "blackman_harris"
+     * \param interpolator "parabolic" (paper eq. 3), "newton" (ML) or "log_parabolic"
+     * \param alignment "tag" or "periodic"
+     * \param tag_key key of the aligning tags (alignment "tag")
+     * \param period samples between window starts (alignment "periodic", >= window_len)
+     * \param offset first window start (alignment "periodic", >= 0)
+     * \param min_freq, max_freq search band in Hz; equal values search the whole band
+     */
+    static sptr make(double samp_rate,
+                     int window_len,
+                     int fft_len,
+                     const std::string& window = "rectangular",
+                     const std::string& interpolator = "parabolic",
+                     const std::string& alignment = "tag",
+                     const std::string& tag_key = "rfseek_beacon",
+                     std::uint64_t period = 0,
+                     std::uint64_t offset = 0,
+                     double min_freq = 0.0,
+                     double max_freq = 0.0);
+
+    virtual std::string window() const = 0;
+    virtual std::string interpolator() const = 0;
+    virtual std::string alignment() const = 0;
+    virtual double min_freq() const = 0;
+    virtual double max_freq() const = 0;
+    //! Windows measured / of them invalid / of them cut short by the next tag.
+    virtual std::uint64_t window_count() const = 0;
+    virtual std::uint64_t invalid_count() const = 0;
+    virtual std::uint64_t truncated_count() const = 0;
+
+    virtual void set_window(const std::string& window) = 0;
+    virtual void set_interpolator(const std::string& interpolator) = 0;
+    virtual void set_band(double min_freq, double max_freq) = 0;
+};
+
+} // namespace rfseek
+} // namespace gr
+
+#endif /* INCLUDED_RFSEEK_DOPPLER_ESTIMATOR_H */

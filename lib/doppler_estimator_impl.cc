@@ -1,0 +1,299 @@
+/* -*- c++ -*- */
+/*
+ * Copyright 2026 gr-rfseek authors.
+ * SPDX-License-Identifier: GPL-3.0-or-later
+ *
+ * doppler_estimator: window alignment (tags or periodic), the sample clock (rx_time), and
+ * the "meas" message around a gr::rfseek::tone_estimator. No estimation logic here.
+ */
+
+#include "doppler_estimator_impl.h"
+#include <gnuradio/io_signature.h>
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+namespace gr {
+namespace rfseek {
+
+namespace {
+bool parse_alignment(const std::string& a)
+{
+    if (a == "tag")
+        return false;
+    if (a == "periodic")
+        return true;
+    throw std::invalid_argument("doppler_estimator: alignment = '" + a +
+                                "': must be 'tag' or 'periodic'");
+}
+
+std::uint64_t check_period(bool periodic, std::uint64_t period, int window_len)
+{
+    if (periodic && period < static_cast<std::uint64_t>(std::max(window_len, 1)))
+        throw std::invalid_argument(
+            "doppler_estimator: period = " + std::to_string(period) +
+            ": must be >= window_len (" + std::to_string(window_len) +
+            ") for periodic alignment");
+    return period;
+}
+} // namespace
+
+doppler_estimator::sptr doppler_estimator::make(double samp_rate,
+                                                int window_len,
+                                                int fft_len,
+                                                const std::string& window,
+                                                const std::string& interpolator,
+                                                const std::string& alignment,
+                                                const std::string& tag_key,
+                                                std::uint64_t period,
+                                                std::uint64_t offset,
+                                                double min_freq,
+                                                double max_freq)
+{
+    return gnuradio::make_block_sptr<doppler_estimator_impl>(samp_rate,
+                                                             window_len,
+                                                             fft_len,
+                                                             window,
+                                                             interpolator,
+                                                             alignment,
+                                                             tag_key,
+                                                             period,
+                                                             offset,
+                                                             min_freq,
+                                                             max_freq);
+}
+
+doppler_estimator_impl::doppler_estimator_impl(double samp_rate,
+                                               int window_len,
+                                               int fft_len,
+                                               const std::string& window,
+                                               const std::string& interpolator,
+                                               const std::string& alignment,
+                                               const std::string& tag_key,
+                                               std::uint64_t period,
+                                               std::uint64_t offset,
+                                               double min_freq,
+                                               double max_freq)
+    : gr::sync_block("doppler_estimator",
+                     gr::io_signature::make(1, 1, sizeof(gr_complex)),
+                     gr::io_signature::make(0, 0, 0)),
+      d_est(samp_rate, window_len, fft_len, window, interpolator, min_freq, max_freq),
+      d_samp_rate(samp_rate),
+      d_periodic(parse_alignment(alignment)),
+      d_tag_key(pmt::mp(tag_key)),
+      d_period(check_period(d_periodic, period, window_len)),
+      d_offset(offset),
+      d_buf(window_len),
+      d_fields(pmt::PMT_NIL),
+      d_clock_rate(samp_rate),
+      d_port_meas(pmt::mp("meas")),
+      d_key_rx_time(pmt::mp("rx_time")),
+      d_key_rx_rate(pmt::mp("rx_rate"))
+{
+    if (!d_periodic && tag_key.empty())
+        throw std::invalid_argument("doppler_estimator: tag_key must not be empty for "
+                                    "tag alignment");
+    message_port_register_out(d_port_meas);
+}
+
+double doppler_estimator_impl::time_of(std::uint64_t abs) const
+{
+    return d_anchor_time +
+           (static_cast<double>(abs) - static_cast<double>(d_anchor_offset)) /
+               d_clock_rate;
+}
+
+void doppler_estimator_impl::start_window(std::uint64_t abs, const pmt::pmt_t& fields)
+{
+    d_collecting = true;
+    d_fill = 0;
+    d_start = abs;
+    d_fields = fields;
+}
+
+void doppler_estimator_impl::finish_window(bool truncated)
+{
+    d_collecting = false;
+    tone_estimate e;
+    if (!truncated)
+        e = d_est.estimate(d_buf.data());
+    ++d_windows;
+    if (truncated)
+        ++d_truncated;
+    if (!e.valid)
+        ++d_invalid;
+
+    pmt::pmt_t m = pmt::make_dict();
+    // Forward the aligning tag's fields (finite numbers and everything non-numeric).
+    if (pmt::is_dict(d_fields) && !pmt::is_null(d_fields)) {
+        pmt::pmt_t items = pmt::dict_items(d_fields);
+        for (std::size_t i = 0; i < pmt::length(items); ++i) {
+            const pmt::pmt_t kv = pmt::nth(i, items);
+            const pmt::pmt_t v = pmt::cdr(kv);
+            if (pmt::is_real(v) && !std::isfinite(pmt::to_double(v)))
+                continue;
+            m = pmt::dict_add(m, pmt::car(kv), v);
+        }
+    } else if (!pmt::is_null(d_fields)) {
+        m = pmt::dict_add(m, pmt::mp("tag_value"), d_fields);
+    }
+    if (!pmt::dict_has_key(m, pmt::mp("slot")))
+        m = pmt::dict_add(m, pmt::mp("slot"), pmt::from_uint64(d_windows - 1));
+    m = pmt::dict_add(m, pmt::mp("time"), pmt::from_double(time_of(d_start)));
+    m = pmt::dict_add(m, pmt::mp("offset"), pmt::from_uint64(d_start));
+    m = pmt::dict_add(m, pmt::mp("freq_hz"), pmt::from_double(e.freq_hz));
+    m = pmt::dict_add(m, pmt::mp("snr_db"), pmt::from_double(e.snr_db));
+    m = pmt::dict_add(m, pmt::mp("power_db"), pmt::from_double(e.power_db));
+    m = pmt::dict_add(m, pmt::mp("noise_power_db"), pmt::from_double(e.noise_power_db));
+    m = pmt::dict_add(m, pmt::mp("valid"), pmt::from_bool(e.valid));
+    message_port_pub(d_port_meas, m);
+}
+
+void doppler_estimator_impl::feed(const gr_complex* in,
+                                  std::uint64_t abs,
+                                  std::uint64_t count)
+{
+    while (count > 0) {
+        if (!d_collecting) {
+            if (!d_periodic)
+                return; // between tagged windows: nothing to measure
+            std::uint64_t next = d_offset;
+            if (abs > d_offset)
+                next = d_offset + ((abs - d_offset + d_period - 1) / d_period) * d_period;
+            if (next >= abs + count)
+                return;
+            in += next - abs;
+            count -= next - abs;
+            abs = next;
+            start_window(abs, pmt::PMT_NIL);
+        }
+        const std::uint64_t take = std::min<std::uint64_t>(count, d_buf.size() - d_fill);
+        std::copy_n(in, take, d_buf.data() + d_fill);
+        d_fill += take;
+        in += take;
+        abs += take;
+        count -= take;
+        if (d_fill == d_buf.size())
+            finish_window(false);
+    }
+}
+
+int doppler_estimator_impl::work(int noutput_items,
+                                 gr_vector_const_void_star& input_items,
+                                 gr_vector_void_star& output_items)
+{
+    auto in = static_cast<const gr_complex*>(input_items[0]);
+    gr::thread::scoped_lock lock(d_setlock);
+    const std::uint64_t base = nitems_read(0);
+    const std::uint64_t end = base + noutput_items;
+
+    std::vector<gr::tag_t> tags;
+    get_tags_in_range(tags, 0, base, end);
+    // Clock tags before window tags at the same offset.
+    std::stable_sort(
+        tags.begin(), tags.end(), [this](const gr::tag_t& a, const gr::tag_t& b) {
+            if (a.offset != b.offset)
+                return a.offset < b.offset;
+            return !pmt::eqv(a.key, d_tag_key) && pmt::eqv(b.key, d_tag_key);
+        });
+
+    std::uint64_t pos = base;
+    for (const auto& t : tags) {
+        const bool is_time = pmt::eqv(t.key, d_key_rx_time);
+        const bool is_rate = pmt::eqv(t.key, d_key_rx_rate);
+        const bool is_window = !d_periodic && pmt::eqv(t.key, d_tag_key);
+        if (!is_time && !is_rate && !is_window)
+            continue;
+        feed(in + (pos - base), pos, t.offset - pos);
+        pos = t.offset;
+        if (is_time) {
+            if (pmt::is_tuple(t.value) && pmt::length(t.value) == 2) {
+                const pmt::pmt_t s = pmt::tuple_ref(t.value, 0);
+                const pmt::pmt_t f = pmt::tuple_ref(t.value, 1);
+                if ((pmt::is_uint64(s) || pmt::is_integer(s)) && pmt::is_real(f)) {
+                    d_anchor_time =
+                        static_cast<double>(pmt::is_uint64(s) ? pmt::to_uint64(s)
+                                                              : pmt::to_long(s)) +
+                        pmt::to_double(f);
+                    d_anchor_offset = t.offset;
+                }
+            }
+        } else if (is_rate) {
+            if (pmt::is_real(t.value) && pmt::to_double(t.value) > 0.0) {
+                // Re-anchor so earlier samples keep their times.
+                d_anchor_time = time_of(t.offset);
+                d_anchor_offset = t.offset;
+                d_clock_rate = pmt::to_double(t.value);
+            }
+        } else {
+            if (d_collecting)
+                finish_window(true);
+            start_window(t.offset, t.value);
+        }
+    }
+    feed(in + (pos - base), pos, end - pos);
+    return noutput_items;
+}
+
+std::string doppler_estimator_impl::window() const
+{
+    gr::thread::scoped_lock lock(setlock());
+    return d_est.window();
+}
+
+std::string doppler_estimator_impl::interpolator() const
+{
+    gr::thread::scoped_lock lock(setlock());
+    return d_est.interpolator();
+}
+
+double doppler_estimator_impl::min_freq() const
+{
+    gr::thread::scoped_lock lock(setlock());
+    return d_est.min_freq_hz();
+}
+
+double doppler_estimator_impl::max_freq() const
+{
+    gr::thread::scoped_lock lock(setlock());
+    return d_est.max_freq_hz();
+}
+
+std::uint64_t doppler_estimator_impl::window_count() const
+{
+    gr::thread::scoped_lock lock(setlock());
+    return d_windows;
+}
+
+std::uint64_t doppler_estimator_impl::invalid_count() const
+{
+    gr::thread::scoped_lock lock(setlock());
+    return d_invalid;
+}
+
+std::uint64_t doppler_estimator_impl::truncated_count() const
+{
+    gr::thread::scoped_lock lock(setlock());
+    return d_truncated;
+}
+
+void doppler_estimator_impl::set_window(const std::string& window)
+{
+    gr::thread::scoped_lock lock(d_setlock);
+    d_est.set_window(window);
+}
+
+void doppler_estimator_impl::set_interpolator(const std::string& interpolator)
+{
+    gr::thread::scoped_lock lock(d_setlock);
+    d_est.set_interpolator(interpolator);
+}
+
+void doppler_estimator_impl::set_band(double min_freq, double max_freq)
+{
+    gr::thread::scoped_lock lock(d_setlock);
+    d_est.set_band(min_freq, max_freq);
+}
+
+} // namespace rfseek
+} // namespace gr

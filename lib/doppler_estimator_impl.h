@@ -1,0 +1,84 @@
+/* -*- c++ -*- */
+/*
+ * Copyright 2026 gr-rfseek authors.
+ * SPDX-License-Identifier: GPL-3.0-or-later
+ */
+
+#ifndef INCLUDED_RFSEEK_DOPPLER_ESTIMATOR_IMPL_H
+#define INCLUDED_RFSEEK_DOPPLER_ESTIMATOR_IMPL_H
+
+#include <gr-rfseek/doppler_estimator.h>
+#include <gr-rfseek/tone_estimator.h>
+#include <vector>
+
+namespace gr {
+namespace rfseek {
+
+class doppler_estimator_impl : public doppler_estimator
+{
+public:
+    doppler_estimator_impl(double samp_rate,
+                           int window_len,
+                           int fft_len,
+                           const std::string& window,
+                           const std::string& interpolator,
+                           const std::string& alignment,
+                           const std::string& tag_key,
+                           std::uint64_t period,
+                           std::uint64_t offset,
+                           double min_freq,
+                           double max_freq);
+
+    int work(int noutput_items,
+             gr_vector_const_void_star& input_items,
+             gr_vector_void_star& output_items) override;
+
+    std::string window() const override;
+    std::string interpolator() const override;
+    std::string alignment() const override { return d_periodic ? "periodic" : "tag"; }
+    double min_freq() const override;
+    double max_freq() const override;
+    std::uint64_t window_count() const override;
+    std::uint64_t invalid_count() const override;
+    std::uint64_t truncated_count() const override;
+
+    void set_window(const std::string& window) override;
+    void set_interpolator(const std::string& interpolator) override;
+    void set_band(double min_freq, double max_freq) override;
+
+private:
+    gr::thread::mutex& setlock() const
+    {
+        return const_cast<gr::thread::mutex&>(d_setlock);
+    }
+    void feed(const gr_complex* in, std::uint64_t abs, std::uint64_t count);
+    void start_window(std::uint64_t abs, const pmt::pmt_t& fields);
+    void finish_window(bool truncated);
+    double time_of(std::uint64_t abs) const;
+
+    tone_estimator d_est;
+    const double d_samp_rate;
+    const bool d_periodic;
+    const pmt::pmt_t d_tag_key;
+    const std::uint64_t d_period;
+    const std::uint64_t d_offset;
+
+    std::vector<gr_complex> d_buf;
+    bool d_collecting = false;
+    std::size_t d_fill = 0;
+    std::uint64_t d_start = 0;
+    pmt::pmt_t d_fields;
+    double d_anchor_time = 0.0;
+    std::uint64_t d_anchor_offset = 0;
+    double d_clock_rate;
+    std::uint64_t d_windows = 0, d_invalid = 0, d_truncated = 0;
+
+    const pmt::pmt_t d_port_meas;
+    const pmt::pmt_t d_key_rx_time;
+    const pmt::pmt_t d_key_rx_rate;
+};
+
+} // namespace rfseek
+} // namespace gr
+
+#endif /* INCLUDED_RFSEEK_DOPPLER_ESTIMATOR_IMPL_H */

@@ -1,0 +1,88 @@
+/*
+ * Copyright 2026 gr-rfseek authors.
+ * SPDX-License-Identifier: GPL-3.0-or-later
+ */
+
+/* BINDTOOL_HEADER_FILE(tone_estimator.h) */
+/* BINDTOOL_HEADER_FILE_HASH(bd1d0b2ec596df6a63573ea90577d250) */
+
+#include <gr-rfseek/tone_estimator.h>
+#include <pybind11/complex.h>
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+namespace py = pybind11;
+
+void bind_tone_estimator(py::module& m)
+{
+    using namespace gr::rfseek;
+    py::class_<tone_estimate>(m, "tone_estimate", "One window's estimate.")
+        .def(py::init<>())
+        .def_readonly("freq_hz", &tone_estimate::freq_hz)
+        .def_readonly("snr_db", &tone_estimate::snr_db)
+        .def_readonly("power_db", &tone_estimate::power_db)
+        .def_readonly("noise_power_db", &tone_estimate::noise_power_db)
+        .def_readonly("peak_bin", &tone_estimate::peak_bin)
+        .def_readonly("valid", &tone_estimate::valid)
+        .def("__repr__", [](const tone_estimate& e) {
+            return "tone_estimate(freq_hz=" + std::to_string(e.freq_hz) +
+                   ", snr_db=" + std::to_string(e.snr_db) +
+                   ", power_db=" + std::to_string(e.power_db) +
+                   ", valid=" + (e.valid ? "True" : "False") + ")";
+        });
+
+    py::class_<tone_estimator>(
+        m,
+        "tone_estimator",
+        "Frequency, SNR and power of the strongest tone in a window "
+        "(zero-padded FFT peak + interpolation).")
+        .def(py::init<double,
+                      int,
+                      int,
+                      const std::string&,
+                      const std::string&,
+                      double,
+                      double>(),
+             py::arg("samp_rate"),
+             py::arg("window_len"),
+             py::arg("fft_len"),
+             py::arg("window") = "rectangular",
+             py::arg("interpolator") = "parabolic",
+             py::arg("min_freq") = 0.0,
+             py::arg("max_freq") = 0.0)
+        .def(
+            "estimate",
+            [](tone_estimator& e,
+               py::array_t<std::complex<float>, py::array::c_style | py::array::forcecast>
+                   x) {
+                if (x.ndim() != 1 || x.shape(0) < e.window_len())
+                    throw py::value_error(
+                        "estimate: need a 1-D array of at least window_len = " +
+                        std::to_string(e.window_len()) + " samples");
+                return e.estimate(x.data());
+            },
+            py::arg("x"))
+        .def_property_readonly("samp_rate", &tone_estimator::samp_rate_hz)
+        .def_property_readonly("window_len", &tone_estimator::window_len)
+        .def_property_readonly("fft_len", &tone_estimator::fft_len)
+        .def("window", &tone_estimator::window)
+        .def("interpolator", &tone_estimator::interpolator)
+        .def("min_freq", &tone_estimator::min_freq_hz)
+        .def("max_freq", &tone_estimator::max_freq_hz)
+        .def("set_window", &tone_estimator::set_window, py::arg("window"))
+        .def("set_interpolator",
+             &tone_estimator::set_interpolator,
+             py::arg("interpolator"))
+        .def("set_band",
+             &tone_estimator::set_band,
+             py::arg("min_freq"),
+             py::arg("max_freq"))
+        .def_static("windows", &tone_estimator::windows)
+        .def_static("interpolators", &tone_estimator::interpolators)
+        .def_static("crb_std_hz",
+                    &tone_estimator::crb_std_hz,
+                    py::arg("snr_linear"),
+                    py::arg("window_len"),
+                    py::arg("samp_rate"));
+}

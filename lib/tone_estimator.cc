@@ -34,6 +34,7 @@ namespace {
 constexpr double TWO_PI = 2.0 * M_PI;
 constexpr int MOMENTS = 8;         // Taylor terms of the periodogram around w0
 constexpr double MAX_SHIFT = 0.15; // |D| (rad per unit u) before re-centring
+constexpr int BLOCK = 64;          // phasor table length
 
 std::mutex& fftw_planner_mutex()
 {
@@ -100,7 +101,7 @@ struct tone_estimator::impl {
     win_kind wk = win_kind::rectangular;
     interp_kind ik = interp_kind::parabolic;
     volk_ptr<float> win;
-    volk_ptr<std::complex<float>> phasor, y;
+    volk_ptr<std::complex<float>> y, phasor, btab;
     std::vector<volk_ptr<float>> upow; // u^k, k < MOMENTS
     // search band as bins [kmin, kmax] in signed FFT indexing; full band when !banded
     bool banded = false;
@@ -122,8 +123,9 @@ struct tone_estimator::impl {
             throw std::runtime_error("tone_estimator: FFTW could not plan the FFT");
         std::memset(in, 0, sizeof(fftwf_complex) * nfft);
         win = volk_alloc<float>(n);
-        phasor = volk_alloc<std::complex<float>>(n);
         y = volk_alloc<std::complex<float>>(n);
+        phasor = volk_alloc<std::complex<float>>(n);
+        btab = volk_alloc<std::complex<float>>(BLOCK);
         for (int k = 0; k < MOMENTS; ++k) {
             upow.push_back(volk_alloc<float>(n));
             for (int i = 0; i < n; ++i)
@@ -156,23 +158,34 @@ struct tone_estimator::impl {
         }
     }
 
-    // y_m = x_m exp(-j w0 (m - c)); the phasor is generated in double (4 interleaved
-    // recurrences) so its phase does not walk off over the window.
-    void demodulate(const std::complex<float>* x, double w0)
+    // y_m = x_m exp(-j w0 (m - c)), returning sum_m y_m (= M_0). The phasor is the
+    // product A_a B_b of two short tables (m = BLOCK a + b) built by recurrences in
+    // double, so its phase error stays at float rounding and does not walk off.
+    std::complex<double> demodulate(const std::complex<float>* x, double w0)
     {
-        const std::complex<double> w4 = std::polar(1.0, -4.0 * w0);
-        std::complex<double> p[4];
-        for (int k = 0; k < 4; ++k)
-            p[k] = std::polar(1.0, -w0 * (k - c));
-        int i = 0;
-        for (; i + 4 <= n; i += 4)
-            for (int k = 0; k < 4; ++k) {
-                phasor[i + k] = std::complex<float>(p[k]);
-                p[k] *= w4;
-            }
-        for (int k = 0; i < n; ++i, ++k)
-            phasor[i] = std::complex<float>(p[k]);
+        const double br = std::cos(w0), bi = -std::sin(w0);
+        double pr = 1.0, pi = 0.0;
+        for (int b = 0; b < BLOCK; ++b) {
+            btab[b] = std::complex<float>(static_cast<float>(pr), static_cast<float>(pi));
+            const double t = pr * br - pi * bi;
+            pi = pr * bi + pi * br;
+            pr = t;
+        }
+        const double ar = std::cos(BLOCK * w0), ai = -std::sin(BLOCK * w0);
+        pr = std::cos(w0 * c); // A_0 = exp(+j w0 c)
+        pi = std::sin(w0 * c);
+        for (int i = 0; i < n; i += BLOCK) {
+            const lv_32fc_t a(static_cast<float>(pr), static_cast<float>(pi));
+            volk_32fc_s32fc_multiply_32fc(
+                phasor.get() + i, btab.get(), a, std::min(BLOCK, n - i));
+            const double t = pr * ar - pi * ai;
+            pi = pr * ai + pi * ar;
+            pr = t;
+        }
         volk_32fc_x2_multiply_32fc(y.get(), x, phasor.get(), n);
+        lv_32fc_t m0;
+        volk_32fc_accumulator_s32fc(&m0, y.get(), n);
+        return std::complex<double>(m0);
     }
 
     std::complex<double> moment(int k) const
@@ -391,8 +404,7 @@ tone_estimate tone_estimator::estimate(const std::complex<float>* x)
         w -= TWO_PI;
 
     // Tone amplitude at the estimate: X(w) of the unwindowed samples.
-    std::complex<double> X;
-    m.demodulate(x, w);
+    std::complex<double> X = m.demodulate(x, w);
     if (m.ik == interp_kind::newton) {
         for (int round = 0; round < 4; ++round) {
             const double D = m.newton(&X);
@@ -404,11 +416,8 @@ tone_estimate tone_estimator::estimate(const std::complex<float>* x)
             // within one FFT bin of the coarse peak.
             const double bin = TWO_PI / nfft;
             w += std::clamp(D / m.h, -bin, bin);
-            m.demodulate(x, w);
-            X = m.moment(0);
+            X = m.demodulate(x, w);
         }
-    } else {
-        X = m.moment(0);
     }
     if (w > M_PI)
         w -= TWO_PI;

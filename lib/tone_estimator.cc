@@ -16,6 +16,7 @@
  * frequency; the noise is the window energy the tone does not explain.
  */
 
+#include "peak_search.h"
 #include <fftw3.h>
 #include <gr-rfseek/tone_estimator.h>
 #include <volk/volk.h>
@@ -101,7 +102,8 @@ struct tone_estimator::impl {
     win_kind wk = win_kind::rectangular;
     interp_kind ik = interp_kind::parabolic;
     volk_ptr<float> win;
-    volk_ptr<std::complex<float>> y, phasor, btab;
+    volk_ptr<std::complex<float>> y, phasor;
+    std::vector<float> atab, btab_re, btab_im;
     std::vector<volk_ptr<float>> upow; // u^k, k < MOMENTS
     // search band as bins [kmin, kmax] in signed FFT indexing; full band when !banded
     bool banded = false;
@@ -125,7 +127,9 @@ struct tone_estimator::impl {
         win = volk_alloc<float>(n);
         y = volk_alloc<std::complex<float>>(n);
         phasor = volk_alloc<std::complex<float>>(n);
-        btab = volk_alloc<std::complex<float>>(BLOCK);
+        atab.assign(2 * ((n + BLOCK - 1) / BLOCK), 0.0f);
+        btab_re.assign(BLOCK, 0.0f);
+        btab_im.assign(BLOCK, 0.0f);
         for (int k = 0; k < MOMENTS; ++k) {
             upow.push_back(volk_alloc<float>(n));
             for (int i = 0; i < n; ++i)
@@ -161,12 +165,13 @@ struct tone_estimator::impl {
     // y_m = x_m exp(-j w0 (m - c)), returning sum_m y_m (= M_0). The phasor is the
     // product A_a B_b of two short tables (m = BLOCK a + b) built by recurrences in
     // double, so its phase error stays at float rounding and does not walk off.
-    std::complex<double> demodulate(const std::complex<float>* x, double w0)
+    std::complex<double> demodulate(const std::complex<float>* x, double w0, bool keep_y)
     {
         const double br = std::cos(w0), bi = -std::sin(w0);
         double pr = 1.0, pi = 0.0;
         for (int b = 0; b < BLOCK; ++b) {
-            btab[b] = std::complex<float>(static_cast<float>(pr), static_cast<float>(pi));
+            btab_re[b] = static_cast<float>(pr);
+            btab_im[b] = static_cast<float>(pi);
             const double t = pr * br - pi * bi;
             pi = pr * bi + pi * br;
             pr = t;
@@ -174,13 +179,25 @@ struct tone_estimator::impl {
         const double ar = std::cos(BLOCK * w0), ai = -std::sin(BLOCK * w0);
         pr = std::cos(w0 * c); // A_0 = exp(+j w0 c)
         pi = std::sin(w0 * c);
-        for (int i = 0; i < n; i += BLOCK) {
-            const lv_32fc_t a(static_cast<float>(pr), static_cast<float>(pi));
-            volk_32fc_s32fc_multiply_32fc(
-                phasor.get() + i, btab.get(), a, std::min(BLOCK, n - i));
+        const int blocks = (n + BLOCK - 1) / BLOCK;
+        for (int i = 0; i < blocks; ++i) {
+            atab[2 * i] = static_cast<float>(pr);
+            atab[2 * i + 1] = static_cast<float>(pi);
             const double t = pr * ar - pi * ai;
             pi = pr * ai + pi * ar;
             pr = t;
+        }
+        if (!keep_y)
+            return detail::demod_dot(x, n, atab.data(), btab_re.data(), btab_im.data());
+        float* ph = reinterpret_cast<float*>(phasor.get());
+        for (int i = 0, blk = 0; i < n; i += BLOCK, ++blk) {
+            const float fr = atab[2 * blk], fi = atab[2 * blk + 1];
+            const int len = std::min(BLOCK, n - i);
+            float* o = ph + 2 * i;
+            for (int b = 0; b < len; ++b) {
+                o[2 * b] = fr * btab_re[b] - fi * btab_im[b];
+                o[2 * b + 1] = fr * btab_im[b] + fi * btab_re[b];
+            }
         }
         volk_32fc_x2_multiply_32fc(y.get(), x, phasor.get(), n);
         lv_32fc_t m0;
@@ -349,36 +366,40 @@ tone_estimate tone_estimator::estimate(const std::complex<float>* x)
     tone_estimate r;
     const int n = m.n, nfft = m.nfft;
 
-    lv_32fc_t e32;
-    volk_32fc_x2_conjugate_dot_prod_32fc(&e32, x, x, n);
-    const double energy = std::real(std::complex<double>(e32));
-    if (!std::isfinite(energy) || !(energy > 0.0))
-        return r; // zero, NaN or Inf input
-
     auto* in = reinterpret_cast<std::complex<float>*>(m.in);
     auto* out = reinterpret_cast<lv_32fc_t*>(m.out);
-    if (m.wk == win_kind::rectangular)
+    double energy = 0.0; // sum |x|^2, from Parseval when the window is rectangular
+    if (m.wk == win_kind::rectangular) {
         std::memcpy(in, x, sizeof(std::complex<float>) * n);
-    else
+    } else {
+        lv_32fc_t e32;
+        volk_32fc_x2_conjugate_dot_prod_32fc(&e32, x, x, n);
+        energy = std::real(std::complex<double>(e32));
         volk_32fc_32f_multiply_32fc(in, x, m.win.get(), n);
+    }
     fftwf_execute(m.plan);
 
     // Coarse peak: the largest |X|^2 over the band.
+    const auto* spec = reinterpret_cast<const std::complex<float>*>(out);
     uint32_t peak = 0;
-    if (!m.banded) {
-        volk_32fc_index_max_32u(&peak, out, nfft);
-    } else {
+    if (!m.banded || m.wk == win_kind::rectangular) {
+        const auto all = detail::peak_search(spec, nfft);
+        peak = all.index;
+        if (m.wk == win_kind::rectangular)
+            energy = all.total / nfft;
+    }
+    if (!std::isfinite(energy) || !(energy > 0.0))
+        return r; // zero, NaN or Inf input
+    if (m.banded) {
         const long a = ((m.kmin % nfft) + nfft) % nfft;
         const long len = m.kmax - m.kmin + 1;
         const long first = std::min<long>(len, nfft - a);
-        uint32_t i1 = 0;
-        volk_32fc_index_max_32u(&i1, out + a, first);
-        peak = static_cast<uint32_t>(a + i1);
+        const auto p1 = detail::peak_search(spec + a, first);
+        peak = static_cast<uint32_t>(a + p1.index);
         if (len > first) {
-            uint32_t i2 = 0;
-            volk_32fc_index_max_32u(&i2, out, len - first);
-            if (std::norm(out[i2]) > std::norm(out[peak]))
-                peak = i2;
+            const auto p2 = detail::peak_search(spec, len - first);
+            if (p2.value > p1.value)
+                peak = p2.index;
         }
     }
     const double y0 = std::abs(out[peak]);
@@ -404,8 +425,9 @@ tone_estimate tone_estimator::estimate(const std::complex<float>* x)
         w -= TWO_PI;
 
     // Tone amplitude at the estimate: X(w) of the unwindowed samples.
-    std::complex<double> X = m.demodulate(x, w);
-    if (m.ik == interp_kind::newton) {
+    const bool newton = m.ik == interp_kind::newton;
+    std::complex<double> X = m.demodulate(x, w, newton);
+    if (newton) {
         for (int round = 0; round < 4; ++round) {
             const double D = m.newton(&X);
             if (std::abs(D) <= MAX_SHIFT) {
@@ -416,7 +438,7 @@ tone_estimate tone_estimator::estimate(const std::complex<float>* x)
             // within one FFT bin of the coarse peak.
             const double bin = TWO_PI / nfft;
             w += std::clamp(D / m.h, -bin, bin);
-            X = m.demodulate(x, w);
+            X = m.demodulate(x, w, true);
         }
     }
     if (w > M_PI)

@@ -15,6 +15,9 @@ void bind_world(py::module& m);
 void bind_tone_estimator(py::module& m);
 void bind_channel_source(py::module& m);
 void bind_doppler_estimator(py::module& m);
+void bind_seeker(py::module& m);
+void bind_simulation(py::module& m);
+void bind_seeking_controller(py::module& m);
 
 PYBIND11_MODULE(rfseek_python, m)
 {
@@ -27,4 +30,7 @@ PYBIND11_MODULE(rfseek_python, m)
     bind_tone_estimator(m);
     bind_channel_source(m);
     bind_doppler_estimator(m);
+    bind_seeker(m);
+    bind_simulation(m);
+    bind_seeking_controller(m);
 }

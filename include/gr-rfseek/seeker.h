@@ -1,0 +1,94 @@
+/* -*- c++ -*- */
+/*
+ * Copyright 2026 gr-rfseek authors.
+ * SPDX-License-Identifier: GPL-3.0-or-later
+ *
+ * seeker: the steering strategies behind one interface (paper Sec. III). A seeker takes
+ * one frequency measurement per slot and returns the heading to fly next. It never sees
+ * the truth. Plain C++ (no GNU Radio types).
+ */
+
+#ifndef INCLUDED_RFSEEK_SEEKER_H
+#define INCLUDED_RFSEEK_SEEKER_H
+
+#include <gr-rfseek/api.h>
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace gr {
+namespace rfseek {
+
+//! Every constant of the seeking strategies (angles in radians).
+struct RFSEEK_API seeker_config {
+    std::string strategy = "paper";         //!< "paper" or "paper_no_circle"
+    double speed_mps = 10.0;                //!< v
+    double carrier_hz = 2.0e9;              //!< f_c (for f_d,max = v f_c / c)
+    double slot_period_s = 0.05;            //!< T_slot
+    double delta_rad = 0.17453292519943295; //!< Stage-2 perturbation delta (10 deg)
+    int m_slots = 20;                       //!< M: slots per half step
+    double circle_radius_m = 100.0;         //!< R_c of the Stage-1 circle
+    int moving_average_len = 15;            //!< Stage-1 moving average (slots)
+    double outlier_threshold_hz =
+        0.0;                  //!< eq. 4 threshold; 0 = 2 f_d,max (4 pi v f_c / c rad/s)
+    bool literal_eq4 = false; //!< eq. 4 as printed (compare with the previous raw value)
+    int relock_count = 5;     //!< re-lock after this many agreeing rejections
+    double turn_rate_rad_per_s = 0.0; //!< the vehicle's limit; 0 = instantaneous
+    int hold_after_missing =
+        10; //!< slots without valid measurements before holding course
+    std::optional<double> initial_heading_rad; //!< Stage-2 start for paper_no_circle
+                                               //!< (None: the first measured heading)
+    std::uint64_t seed = 1;                    //!< random turning sense of the circle
+
+    double max_doppler_hz() const;
+    double effective_outlier_threshold_hz() const;
+    //! Throws std::invalid_argument naming the field and its range.
+    void validate() const;
+};
+
+//! One slot's measurement as the seeker sees it.
+struct RFSEEK_API measurement {
+    std::uint64_t slot = 0;
+    double time_s = 0.0;
+    double freq_hz = 0.0;
+    double snr_db = 0.0;
+    double power_db = 0.0;
+    bool valid = false;
+    bool has_heading = false;
+    double heading_rad = 0.0; //!< measured heading at the beacon
+};
+
+//! The seeker's answer to one measurement.
+struct RFSEEK_API command {
+    std::uint64_t slot = 0;     //!< slot of the measurement answered
+    double heading_rad = 0.0;   //!< heading to fly from now on
+    int stage = 0;              //!< 1 (circle) or 2 (perturbations)
+    double theta_est_rad = 0.0; //!< current estimate of the direction to the emitter
+    bool update = false;  //!< a Stage-2 update (eq. 5) or the Stage-1 decision happened
+    bool holding = false; //!< holding course for lack of measurements
+    double filtered_freq_hz = 0.0; //!< the eq. 4 output for this measurement
+    bool accepted = false;         //!< eq. 4 accepted this measurement
+};
+
+class RFSEEK_API seeker
+{
+public:
+    virtual ~seeker() = default;
+    //! Build a strategy by name (seeker_config::strategy). Throws on bad configuration.
+    static std::unique_ptr<seeker> make(const seeker_config& cfg);
+    static std::vector<std::string> strategies();
+
+    //! One measurement in (valid or not), one command out.
+    virtual command update(const measurement& m) = 0;
+    virtual const seeker_config& config() const = 0;
+    virtual int stage() const = 0;
+    virtual double theta_est_rad() const = 0;
+    virtual std::uint64_t updates() const = 0; //!< Stage-2 updates applied
+};
+
+} // namespace rfseek
+} // namespace gr
+
+#endif /* INCLUDED_RFSEEK_SEEKER_H */

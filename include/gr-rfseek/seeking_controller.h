@@ -1,0 +1,55 @@
+/* -*- c++ -*- */
+/*
+ * Copyright 2026 gr-rfseek authors.
+ * SPDX-License-Identifier: GPL-3.0-or-later
+ *
+ * seeking_controller: the seeker as a message block (meas, nav in; cmd, telemetry out).
+ * A thin adapter over gr::rfseek::seeker.
+ */
+
+#ifndef INCLUDED_RFSEEK_SEEKING_CONTROLLER_H
+#define INCLUDED_RFSEEK_SEEKING_CONTROLLER_H
+
+#include <gnuradio/block.h>
+#include <gr-rfseek/api.h>
+#include <gr-rfseek/seeker.h>
+#include <cstdint>
+
+namespace gr {
+namespace rfseek {
+
+/*!
+ * \brief Steers the UAV from frequency measurements (paper Sec. III).
+ * \ingroup rfseek
+ *
+ * \details
+ * In "meas": dicts from doppler_estimator {slot, freq_hz, valid, heading?, snr_db?,
+ * power_db?, time?}. In "nav": dicts {heading} from the vehicle; the heading of a meas is
+ * used when present, else the latest nav heading. Every meas with a usable slot is
+ * answered by one "cmd" {slot, heading, stage} and one "telemetry" {slot, stage,
+ * theta_est, update, holding, accepted, filtered_freq_hz, freq_hz, valid}. Invalid
+ * measurements are ignored by the strategy (a cmd is still sent so a lockstep source
+ * keeps going); after a run of them the course is held. Malformed messages are logged
+ * once per kind, counted and dropped.
+ */
+class RFSEEK_API seeking_controller : virtual public gr::block
+{
+public:
+    typedef std::shared_ptr<seeking_controller> sptr;
+
+    //! \param cfg strategy and constants (validated; bad fields raise ValueError)
+    static sptr make(const seeker_config& cfg);
+
+    virtual seeker_config config() const = 0;
+    virtual int stage() const = 0;
+    virtual double theta_est() const = 0;
+    virtual std::uint64_t updates() const = 0;
+    virtual std::uint64_t meas_count() const = 0;
+    virtual std::uint64_t invalid_count() const = 0;
+    virtual std::uint64_t malformed_count() const = 0;
+};
+
+} // namespace rfseek
+} // namespace gr
+
+#endif /* INCLUDED_RFSEEK_SEEKING_CONTROLLER_H */

@@ -1,0 +1,273 @@
+/*
+ * Copyright 2026 gr-rfseek authors.
+ * SPDX-License-Identifier: GPL-3.0-or-later
+ *
+ * seeker and simulation against the paper's analysis (Sec. III-B) and its reference
+ * scenario: the Stage-2 error recursion, Stage-1 accuracy, convergence from any heading,
+ * robustness to invalid and missing measurements, and eq. 4.
+ */
+
+#include <gr-rfseek/seeker.h>
+#include <gr-rfseek/simulation.h>
+#include <gr-rfseek/tone_estimator.h>
+#include <gr-rfseek/world.h>
+#include <gtest/gtest.h>
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+using namespace gr::rfseek;
+
+namespace {
+
+constexpr double DEG = M_PI / 180.0;
+
+scenario clean()
+{
+    scenario s;
+    s.num_scatterers = 0;
+    s.add_noise = false;
+    s.cfo_hz = 250.0;
+    s.cfo_drift_hz_per_s = 0.0;
+    s.cfo_walk_hz_per_sqrt_s = 0.0;
+    s.heading_noise_rad = 0.0;
+    s.start_angle_rad = 0.3;
+    return s;
+}
+
+measurement
+measure(const world& w, tone_estimator& est, std::vector<std::complex<float>>& buf)
+{
+    w.synthesize(buf.data(), buf.size());
+    const auto e = est.estimate(buf.data());
+    measurement m;
+    m.slot = w.slot();
+    m.time_s = w.time_s();
+    m.freq_hz = e.freq_hz;
+    m.valid = e.valid;
+    m.has_heading = true;
+    m.heading_rad = w.measured_heading_rad();
+    return m;
+}
+
+// Runs the loop until the seeker reports Stage 2 (the Stage-1 decision); returns
+// theta_0 minus the true bearing at that moment.
+double stage1_error(const scenario& sc)
+{
+    world w(sc);
+    tone_estimator est(sc.samp_rate_hz, sc.window_len, sc.fft_len);
+    auto sk = seeker::make(simulation::seeker_for(sc, "paper"));
+    std::vector<std::complex<float>> buf(sc.window_len);
+    for (int k = 0; k < 5000; ++k) {
+        const command c = sk->update(measure(w, est, buf));
+        if (c.stage == 2)
+            return world::wrap(c.theta_est_rad - w.bearing_to_emitter_rad());
+        w.advance(c.heading_rad);
+    }
+    ADD_FAILURE() << "no Stage-1 decision";
+    return M_PI;
+}
+
+} // namespace
+
+TEST(seeker, stage2_step_follows_the_error_recursion)
+{
+    // theta~_{k+1} = theta~_k - 2 sin(theta~_k) sin(delta) delta  (Sec. III-B, eq. 6)
+    const double delta = 10.0 * DEG;
+    for (double err_deg : { 5.0, 20.0, 45.0, 90.0, 120.0, 150.0, 170.0, -30.0, -100.0 }) {
+        scenario sc = clean();
+        sc.initial_distance_m = 50000.0; // far field: the bearing barely moves in a step
+        sc.success_radius_m = 200.0;
+        world w(sc);
+        const double bearing = w.bearing_to_emitter_rad();
+        seeker_config cfg = simulation::seeker_for(sc, "paper_no_circle");
+        cfg.initial_heading_rad = bearing + err_deg * DEG;
+        auto sk = seeker::make(cfg);
+        tone_estimator est(
+            sc.samp_rate_hz, sc.window_len, sc.fft_len, "rectangular", "newton");
+        std::vector<std::complex<float>> buf(sc.window_len);
+        const double theta0 = world::wrap(*cfg.initial_heading_rad);
+        double theta1 = theta0, bearing1 = bearing;
+        for (int k = 0; k < 100; ++k) {
+            const command c = sk->update(measure(w, est, buf));
+            if (c.update) {
+                theta1 = c.theta_est_rad;
+                bearing1 = w.bearing_to_emitter_rad();
+                break;
+            }
+            w.advance(c.heading_rad);
+        }
+        const double e0 = world::wrap(theta0 - bearing);
+        const double predicted = -2.0 * std::sin(e0) * std::sin(delta) * delta;
+        const double change = world::wrap(theta1 - theta0);
+        EXPECT_NEAR(change, predicted, 0.05 * std::abs(predicted)) << "error " << err_deg;
+        const double e1 = world::wrap(theta1 - bearing1);
+        EXPECT_NEAR(e1, e0 + predicted, 0.05 * std::abs(predicted) + 1e-3)
+            << "error " << err_deg;
+    }
+}
+
+TEST(seeker, reaches_dv_from_any_initial_heading)
+{
+    for (double err_deg : { 0.0, 60.0, -90.0, 135.0, 170.0, -175.0 }) {
+        scenario sc = clean();
+        sc.initial_distance_m = 2000.0;
+        world w0(sc);
+        seeker_config cfg = simulation::seeker_for(sc, "paper_no_circle");
+        cfg.initial_heading_rad = w0.bearing_to_emitter_rad() + err_deg * DEG;
+        const auto r = simulation(sc, cfg).run(false);
+        EXPECT_TRUE(r.summary.success) << "initial error " << err_deg;
+    }
+}
+
+TEST(seeker, stage1_line_of_sight_within_3_degrees)
+{
+    for (std::uint64_t seed = 1; seed <= 6; ++seed) {
+        scenario sc = clean();
+        sc.seed = seed;
+        sc.start_angle_rad.reset();
+        const double e = stage1_error(sc);
+        EXPECT_LE(std::abs(e), 3.0 * DEG) << "seed " << seed << ": " << e / DEG << " deg";
+    }
+}
+
+TEST(seeker, stage1_reference_scenario_within_20_degrees_in_90_percent)
+{
+    int within = 0;
+    const int seeds = 40;
+    for (int seed = 1; seed <= seeds; ++seed) {
+        scenario sc;
+        sc.seed = seed;
+        if (std::abs(stage1_error(sc)) <= 20.0 * DEG)
+            ++within;
+    }
+    EXPECT_GE(within, 0.9 * seeds);
+}
+
+TEST(seeker, reference_scenario_20_seeds)
+{
+    double sum = 0.0;
+    for (int seed = 1; seed <= 20; ++seed) {
+        scenario sc;
+        sc.seed = seed;
+        const auto r = simulation(sc, simulation::seeker_for(sc, "paper")).run(false);
+        EXPECT_TRUE(r.summary.success) << "seed " << seed;
+        // Never shorter than the straight line plus the Stage-1 circle (2 pi 100 m).
+        EXPECT_GE(r.summary.distance_m, sc.shortest_path_m() + 2 * M_PI * 100.0 - 1.0);
+        sum += r.summary.ratio;
+    }
+    EXPECT_LT(sum / 20.0, 1.25);
+}
+
+TEST(seeker, invalid_measurements_and_a_gap_do_not_derail_it)
+{
+    scenario sc;
+    sc.seed = 4;
+    world w(sc);
+    tone_estimator est(sc.samp_rate_hz, sc.window_len, sc.fft_len);
+    auto sk = seeker::make(simulation::seeker_for(sc, "paper"));
+    std::vector<std::complex<float>> buf(sc.window_len);
+    double heading = w.heading_rad();
+    int held = 0;
+    while (!w.finished()) {
+        const std::uint64_t k = w.slot();
+        const bool gap = k >= 3000 && k < 3040;            // 2 s without measurements
+        const bool invalid_run = k >= 5000 && k < 5060;    // 3 s of invalid ones
+        const bool sporadic = (k * 2654435761u) % 100 < 5; // 5 % invalid
+        if (!gap) {
+            measurement m = measure(w, est, buf);
+            if (invalid_run || sporadic) {
+                m.valid = false;
+                m.freq_hz = std::nan("");
+            }
+            const command c = sk->update(m);
+            ASSERT_TRUE(std::isfinite(c.heading_rad));
+            if (c.holding) {
+                ++held;
+                EXPECT_NEAR(world::wrap(c.heading_rad - c.theta_est_rad), 0.0, 1e-12);
+            }
+            heading = c.heading_rad;
+        }
+        w.advance(heading); // through the gap the vehicle holds its last command
+    }
+    EXPECT_TRUE(w.arrived());
+    EXPECT_GE(held, 60 - 10); // held course through most of the invalid run
+    EXPECT_LT(w.distance_flown_m(), 1.3 * sc.shortest_path_m());
+}
+
+TEST(seeker, eq4_rejects_an_outlier_and_relocks)
+{
+    seeker_config cfg;
+    cfg.strategy = "paper_no_circle";
+    cfg.initial_heading_rad = 0.0;
+    auto sk = seeker::make(cfg);
+    auto feed = [&](std::uint64_t slot, double f) {
+        measurement m;
+        m.slot = slot;
+        m.freq_hz = f;
+        m.valid = true;
+        return sk->update(m);
+    };
+    EXPECT_TRUE(feed(0, 100.0).accepted);
+    EXPECT_TRUE(feed(1, 110.0).accepted);
+    const command out = feed(2, 900.0); // outlier: replaced by the last accepted value
+    EXPECT_FALSE(out.accepted);
+    EXPECT_EQ(out.filtered_freq_hz, 110.0);
+    // The sample after the outlier is compared with the last accepted value, not with
+    // the outlier (the literal eq. 4 would let the outlier through here).
+    const command next = feed(3, 115.0);
+    EXPECT_TRUE(next.accepted);
+    EXPECT_EQ(next.filtered_freq_hz, 115.0);
+    // A lasting jump (e.g. the CFO re-tuned) is re-acquired after relock_count samples.
+    int k = 4;
+    command c;
+    for (int i = 0; i < cfg.relock_count; ++i)
+        c = feed(k++, 600.0 + i);
+    EXPECT_TRUE(c.accepted);
+    EXPECT_EQ(c.filtered_freq_hz, 600.0 + cfg.relock_count - 1);
+
+    cfg.literal_eq4 = true;
+    sk = seeker::make(cfg);
+    feed(0, 100.0);
+    EXPECT_FALSE(feed(1, 900.0).accepted);
+    const command lit = feed(2, 105.0); // compared with 900: rejected, 900 substituted
+    EXPECT_FALSE(lit.accepted);
+    EXPECT_EQ(lit.filtered_freq_hz, 900.0);
+}
+
+TEST(seeker, finite_turn_rate_excludes_turning_slots_and_succeeds)
+{
+    scenario sc;
+    sc.seed = 2;
+    sc.turn_rate_rad_per_s = 30.0 * DEG;
+    const auto r = simulation(sc, simulation::seeker_for(sc, "paper")).run(true);
+    EXPECT_TRUE(r.summary.success);
+    // The vehicle never turned faster than its limit.
+    for (std::size_t i = 1; i < r.records.size(); ++i)
+        EXPECT_LE(std::abs(world::wrap(r.records[i].heading_rad -
+                                       r.records[i - 1].heading_rad)),
+                  sc.turn_rate_rad_per_s * sc.slot_period_s + 1e-9);
+}
+
+TEST(seeker, bad_configuration_names_the_field)
+{
+    seeker_config c;
+    c.strategy = "gradient";
+    EXPECT_THROW(seeker::make(c), std::invalid_argument);
+    for (auto mutate : std::vector<void (*)(seeker_config&)>{
+             [](seeker_config& s) { s.delta_rad = 0.0; },
+             [](seeker_config& s) { s.m_slots = 0; },
+             [](seeker_config& s) { s.circle_radius_m = -1.0; },
+             [](seeker_config& s) { s.speed_mps = 0.0; },
+             [](seeker_config& s) { s.moving_average_len = 0; },
+             [](seeker_config& s) { s.turn_rate_rad_per_s = -1.0; } }) {
+        seeker_config s;
+        mutate(s);
+        try {
+            s.validate();
+            ADD_FAILURE() << "accepted";
+        } catch (const std::invalid_argument& e) {
+            EXPECT_NE(std::string(e.what()).find("seeker_config."), std::string::npos);
+        }
+    }
+}

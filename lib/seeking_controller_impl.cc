@@ -1,0 +1,209 @@
+/* -*- c++ -*- */
+/*
+ * Copyright 2026 gr-rfseek authors.
+ * SPDX-License-Identifier: GPL-3.0-or-later
+ *
+ * seeking_controller: message parsing and publishing around a gr::rfseek::seeker. No
+ * control logic here.
+ */
+
+#include "seeking_controller_impl.h"
+#include <gnuradio/io_signature.h>
+#include <cmath>
+
+namespace gr {
+namespace rfseek {
+
+namespace {
+bool number(const pmt::pmt_t& v)
+{
+    return pmt::is_real(v) || pmt::is_integer(v) || pmt::is_uint64(v);
+}
+} // namespace
+
+seeking_controller::sptr seeking_controller::make(const seeker_config& cfg)
+{
+    return gnuradio::make_block_sptr<seeking_controller_impl>(cfg);
+}
+
+seeking_controller_impl::seeking_controller_impl(const seeker_config& cfg)
+    : gr::block("seeking_controller",
+                gr::io_signature::make(0, 0, 0),
+                gr::io_signature::make(0, 0, 0)),
+      d_seeker(seeker::make(cfg)),
+      d_port_meas(pmt::mp("meas")),
+      d_port_nav(pmt::mp("nav")),
+      d_port_cmd(pmt::mp("cmd")),
+      d_port_telemetry(pmt::mp("telemetry")),
+      d_key_slot(pmt::mp("slot")),
+      d_key_heading(pmt::mp("heading")),
+      d_key_freq(pmt::mp("freq_hz")),
+      d_key_valid(pmt::mp("valid")),
+      d_key_snr(pmt::mp("snr_db")),
+      d_key_power(pmt::mp("power_db")),
+      d_key_time(pmt::mp("time")),
+      d_key_stage(pmt::mp("stage"))
+{
+    message_port_register_in(d_port_meas);
+    message_port_register_in(d_port_nav);
+    message_port_register_out(d_port_cmd);
+    message_port_register_out(d_port_telemetry);
+    set_msg_handler(d_port_meas, [this](const pmt::pmt_t& m) { handle_meas(m); });
+    set_msg_handler(d_port_nav, [this](const pmt::pmt_t& m) { handle_nav(m); });
+}
+
+void seeking_controller_impl::drop(const std::string& port,
+                                   const std::string& kind,
+                                   const pmt::pmt_t& msg)
+{
+    ++d_malformed;
+    if (d_logged.insert(port + ":" + kind).second)
+        d_logger->warn(
+            "{} message dropped ({}): {} (further drops of this kind are counted "
+            "silently; see malformed_count())",
+            port,
+            kind,
+            pmt::write_string(msg));
+}
+
+void seeking_controller_impl::handle_nav(const pmt::pmt_t& msg)
+{
+    gr::thread::scoped_lock lock(d_setlock);
+    if (!pmt::is_dict(msg) || pmt::is_null(msg)) {
+        drop("nav", "not a dict", msg);
+        return;
+    }
+    pmt::pmt_t h;
+    try {
+        h = pmt::dict_ref(msg, d_key_heading, pmt::PMT_NIL);
+    } catch (const std::exception&) {
+        drop("nav", "not a dict", msg);
+        return;
+    }
+    if (!number(h) || !std::isfinite(pmt::to_double(h))) {
+        drop("nav", "no finite 'heading'", msg);
+        return;
+    }
+    d_nav_heading = pmt::to_double(h);
+    d_have_nav = true;
+}
+
+void seeking_controller_impl::handle_meas(const pmt::pmt_t& msg)
+{
+    gr::thread::scoped_lock lock(d_setlock);
+    if (!pmt::is_dict(msg) || pmt::is_null(msg)) {
+        drop("meas", "not a dict", msg);
+        return;
+    }
+    pmt::pmt_t slot, freq, valid, heading, snr, power, time;
+    try {
+        slot = pmt::dict_ref(msg, d_key_slot, pmt::PMT_NIL);
+        freq = pmt::dict_ref(msg, d_key_freq, pmt::PMT_NIL);
+        valid = pmt::dict_ref(msg, d_key_valid, pmt::PMT_NIL);
+        heading = pmt::dict_ref(msg, d_key_heading, pmt::PMT_NIL);
+        snr = pmt::dict_ref(msg, d_key_snr, pmt::PMT_NIL);
+        power = pmt::dict_ref(msg, d_key_power, pmt::PMT_NIL);
+        time = pmt::dict_ref(msg, d_key_time, pmt::PMT_NIL);
+    } catch (const std::exception&) {
+        drop("meas", "not a dict", msg);
+        return;
+    }
+    if (!(pmt::is_uint64(slot) || (pmt::is_integer(slot) && pmt::to_long(slot) >= 0))) {
+        drop("meas", "no non-negative integer 'slot'", msg);
+        return;
+    }
+    measurement m;
+    m.slot = pmt::is_uint64(slot) ? pmt::to_uint64(slot)
+                                  : static_cast<std::uint64_t>(pmt::to_long(slot));
+    // A measurement whose fields are unusable is answered as an invalid one, so a
+    // lockstep loop keeps going; it is still counted and logged as malformed.
+    bool ok = number(freq) && pmt::is_bool(valid);
+    if (!ok)
+        drop("meas", "no numeric 'freq_hz' or boolean 'valid'", msg);
+    m.freq_hz = ok ? pmt::to_double(freq) : 0.0;
+    m.valid = ok && pmt::to_bool(valid) && std::isfinite(m.freq_hz);
+    if (number(snr))
+        m.snr_db = pmt::to_double(snr);
+    if (number(power))
+        m.power_db = pmt::to_double(power);
+    if (number(time))
+        m.time_s = pmt::to_double(time);
+    if (number(heading) && std::isfinite(pmt::to_double(heading))) {
+        m.has_heading = true;
+        m.heading_rad = pmt::to_double(heading);
+    } else if (d_have_nav) {
+        m.has_heading = true;
+        m.heading_rad = d_nav_heading;
+    }
+    ++d_meas;
+    if (!m.valid)
+        ++d_invalid;
+
+    const command c = d_seeker->update(m);
+
+    pmt::pmt_t cmd = pmt::make_dict();
+    cmd = pmt::dict_add(cmd, d_key_slot, pmt::from_uint64(c.slot));
+    cmd = pmt::dict_add(cmd, d_key_heading, pmt::from_double(c.heading_rad));
+    cmd = pmt::dict_add(cmd, d_key_stage, pmt::from_long(c.stage));
+    message_port_pub(d_port_cmd, cmd);
+
+    pmt::pmt_t t = pmt::make_dict();
+    t = pmt::dict_add(t, d_key_slot, pmt::from_uint64(c.slot));
+    t = pmt::dict_add(t, d_key_time, pmt::from_double(m.time_s));
+    t = pmt::dict_add(t, d_key_stage, pmt::from_long(c.stage));
+    t = pmt::dict_add(t, pmt::mp("theta_est"), pmt::from_double(c.theta_est_rad));
+    t = pmt::dict_add(t, d_key_heading, pmt::from_double(c.heading_rad));
+    t = pmt::dict_add(t, pmt::mp("update"), pmt::from_bool(c.update));
+    t = pmt::dict_add(t, pmt::mp("holding"), pmt::from_bool(c.holding));
+    t = pmt::dict_add(t, pmt::mp("accepted"), pmt::from_bool(c.accepted));
+    t = pmt::dict_add(
+        t, pmt::mp("filtered_freq_hz"), pmt::from_double(c.filtered_freq_hz));
+    t = pmt::dict_add(t, d_key_freq, pmt::from_double(m.valid ? m.freq_hz : 0.0));
+    t = pmt::dict_add(t, d_key_valid, pmt::from_bool(m.valid));
+    message_port_pub(d_port_telemetry, t);
+}
+
+seeker_config seeking_controller_impl::config() const
+{
+    gr::thread::scoped_lock lock(setlock());
+    return d_seeker->config();
+}
+
+int seeking_controller_impl::stage() const
+{
+    gr::thread::scoped_lock lock(setlock());
+    return d_seeker->stage();
+}
+
+double seeking_controller_impl::theta_est() const
+{
+    gr::thread::scoped_lock lock(setlock());
+    return d_seeker->theta_est_rad();
+}
+
+std::uint64_t seeking_controller_impl::updates() const
+{
+    gr::thread::scoped_lock lock(setlock());
+    return d_seeker->updates();
+}
+
+std::uint64_t seeking_controller_impl::meas_count() const
+{
+    gr::thread::scoped_lock lock(setlock());
+    return d_meas;
+}
+
+std::uint64_t seeking_controller_impl::invalid_count() const
+{
+    gr::thread::scoped_lock lock(setlock());
+    return d_invalid;
+}
+
+std::uint64_t seeking_controller_impl::malformed_count() const
+{
+    gr::thread::scoped_lock lock(setlock());
+    return d_malformed;
+}
+
+} // namespace rfseek
+} // namespace gr

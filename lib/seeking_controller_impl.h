@@ -1,0 +1,53 @@
+/* -*- c++ -*- */
+/*
+ * Copyright 2026 gr-rfseek authors.
+ * SPDX-License-Identifier: GPL-3.0-or-later
+ */
+
+#ifndef INCLUDED_RFSEEK_SEEKING_CONTROLLER_IMPL_H
+#define INCLUDED_RFSEEK_SEEKING_CONTROLLER_IMPL_H
+
+#include <gr-rfseek/seeking_controller.h>
+#include <memory>
+#include <set>
+
+namespace gr {
+namespace rfseek {
+
+class seeking_controller_impl : public seeking_controller
+{
+public:
+    explicit seeking_controller_impl(const seeker_config& cfg);
+
+    seeker_config config() const override;
+    int stage() const override;
+    double theta_est() const override;
+    std::uint64_t updates() const override;
+    std::uint64_t meas_count() const override;
+    std::uint64_t invalid_count() const override;
+    std::uint64_t malformed_count() const override;
+
+private:
+    gr::thread::mutex& setlock() const
+    {
+        return const_cast<gr::thread::mutex&>(d_setlock);
+    }
+    void handle_meas(const pmt::pmt_t& msg);
+    void handle_nav(const pmt::pmt_t& msg);
+    void drop(const std::string& port, const std::string& kind, const pmt::pmt_t& msg);
+
+    std::unique_ptr<seeker> d_seeker;
+    bool d_have_nav = false;
+    double d_nav_heading = 0.0;
+    std::uint64_t d_meas = 0, d_invalid = 0, d_malformed = 0;
+    std::set<std::string> d_logged;
+
+    const pmt::pmt_t d_port_meas, d_port_nav, d_port_cmd, d_port_telemetry;
+    const pmt::pmt_t d_key_slot, d_key_heading, d_key_freq, d_key_valid, d_key_snr,
+        d_key_power, d_key_time, d_key_stage;
+};
+
+} // namespace rfseek
+} // namespace gr
+
+#endif /* INCLUDED_RFSEEK_SEEKING_CONTROLLER_IMPL_H */

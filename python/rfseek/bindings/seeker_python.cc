@@ -1,0 +1,90 @@
+/*
+ * Copyright 2026 gr-rfseek authors.
+ * SPDX-License-Identifier: GPL-3.0-or-later
+ */
+
+/* BINDTOOL_HEADER_FILE(seeker.h) */
+/* BINDTOOL_HEADER_FILE_HASH(cc05cf0da6c4f4a0247d62938e5a6fb9) */
+
+#include <gr-rfseek/seeker.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+#include <algorithm>
+
+namespace py = pybind11;
+
+void bind_seeker(py::module& m)
+{
+    using namespace gr::rfseek;
+    py::class_<seeker_config> c(m,
+                                "seeker_config",
+                                "Strategy and constants of the seeker. "
+                                "seeker_config(**fields) sets fields by name.");
+    c.def(py::init([](const py::kwargs& kw) {
+        seeker_config s;
+        py::object self = py::cast(&s, py::return_value_policy::reference);
+        for (const auto& item : kw) {
+            const auto key = py::cast<std::string>(item.first);
+            if (key.rfind("_", 0) == 0 || !py::hasattr(self, key.c_str()))
+                throw py::type_error(
+                    "seeker_config() got an unexpected keyword argument '" + key + "'");
+            py::setattr(self, key.c_str(), item.second);
+        }
+        return s;
+    }));
+#define RW(NAME, DOC) c.def_readwrite(#NAME, &seeker_config::NAME, DOC)
+    RW(strategy, "'paper' or 'paper_no_circle'");
+    RW(speed_mps, "v (m/s)");
+    RW(carrier_hz, "f_c (Hz)");
+    RW(slot_period_s, "T_slot (s)");
+    RW(delta_rad, "Stage-2 perturbation delta (rad)");
+    RW(m_slots, "M: slots per half step");
+    RW(circle_radius_m, "R_c of the Stage-1 circle (m)");
+    RW(moving_average_len, "Stage-1 moving average (slots)");
+    RW(outlier_threshold_hz, "eq. 4 threshold (Hz); 0 = 2 f_d,max");
+    RW(literal_eq4, "eq. 4 as printed (compare with the previous raw value)");
+    RW(relock_count, "re-lock after this many agreeing rejections");
+    RW(turn_rate_rad_per_s, "vehicle turn-rate limit (rad/s); 0 = instantaneous");
+    RW(hold_after_missing, "slots without valid measurements before holding course");
+    RW(initial_heading_rad,
+       "Stage-2 start for paper_no_circle (None: first measured heading)");
+    RW(seed, "seed (random turning sense of the circle)");
+#undef RW
+    c.def("validate", &seeker_config::validate)
+        .def_property_readonly("max_doppler_hz", &seeker_config::max_doppler_hz)
+        .def_property_readonly("effective_outlier_threshold_hz",
+                               &seeker_config::effective_outlier_threshold_hz);
+
+    py::class_<measurement>(
+        m, "measurement", "One slot's measurement as the seeker sees it.")
+        .def(py::init<>())
+        .def_readwrite("slot", &measurement::slot)
+        .def_readwrite("time_s", &measurement::time_s)
+        .def_readwrite("freq_hz", &measurement::freq_hz)
+        .def_readwrite("snr_db", &measurement::snr_db)
+        .def_readwrite("power_db", &measurement::power_db)
+        .def_readwrite("valid", &measurement::valid)
+        .def_readwrite("has_heading", &measurement::has_heading)
+        .def_readwrite("heading_rad", &measurement::heading_rad);
+
+    py::class_<command>(m, "command", "The seeker's answer to one measurement.")
+        .def(py::init<>())
+        .def_readonly("slot", &command::slot)
+        .def_readonly("heading_rad", &command::heading_rad)
+        .def_readonly("stage", &command::stage)
+        .def_readonly("theta_est_rad", &command::theta_est_rad)
+        .def_readonly("update", &command::update)
+        .def_readonly("holding", &command::holding)
+        .def_readonly("filtered_freq_hz", &command::filtered_freq_hz)
+        .def_readonly("accepted", &command::accepted);
+
+    py::class_<seeker, std::unique_ptr<seeker>>(m, "seeker", "A seeking strategy.")
+        .def(py::init(&seeker::make), py::arg("config"))
+        .def_static("make", &seeker::make, py::arg("config"))
+        .def_static("strategies", &seeker::strategies)
+        .def("update", &seeker::update, py::arg("measurement"))
+        .def("config", &seeker::config)
+        .def("stage", &seeker::stage)
+        .def("theta_est_rad", &seeker::theta_est_rad)
+        .def("updates", &seeker::updates);
+}

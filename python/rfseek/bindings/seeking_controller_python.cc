@@ -1,0 +1,33 @@
+/*
+ * Copyright 2026 gr-rfseek authors.
+ * SPDX-License-Identifier: GPL-3.0-or-later
+ */
+
+/* BINDTOOL_HEADER_FILE(seeking_controller.h) */
+/* BINDTOOL_HEADER_FILE_HASH(64af921b993773b1bc10ac1ca790e9eb) */
+
+#include <gr-rfseek/seeking_controller.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+namespace py = pybind11;
+
+void bind_seeking_controller(py::module& m)
+{
+    using gr::rfseek::seeking_controller;
+    py::class_<seeking_controller,
+               gr::block,
+               gr::basic_block,
+               std::shared_ptr<seeking_controller>>(
+        m,
+        "seeking_controller",
+        "The seeker as a message block: 'meas', 'nav' in; 'cmd', 'telemetry' out.")
+        .def(py::init(&seeking_controller::make), py::arg("config"))
+        .def("config", &seeking_controller::config)
+        .def("stage", &seeking_controller::stage)
+        .def("theta_est", &seeking_controller::theta_est)
+        .def("updates", &seeking_controller::updates)
+        .def("meas_count", &seeking_controller::meas_count)
+        .def("invalid_count", &seeking_controller::invalid_count)
+        .def("malformed_count", &seeking_controller::malformed_count);
+}

@@ -147,6 +147,15 @@ void channel_source_impl::publish_state()
     d = pmt::dict_add(d, pmt::mp("power_db"), pmt::from_double(10.0 * std::log10(p)));
     d = pmt::dict_add(d, pmt::mp("arrived"), pmt::from_bool(w.arrived()));
     d = pmt::dict_add(d, pmt::mp("capped"), pmt::from_bool(w.capped()));
+    if (w.slot() == 0) {
+        // Scene geometry once, for plots: scatterer positions x0, y0, x1, y1, ...
+        std::vector<double> xy;
+        for (const auto& s : w.scatterers()) {
+            xy.push_back(s.x_m);
+            xy.push_back(s.y_m);
+        }
+        d = pmt::dict_add(d, pmt::mp("scatterers"), pmt::init_f64vector(xy.size(), xy));
+    }
     message_port_pub(d_port_state, d);
 }
 

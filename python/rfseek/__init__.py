@@ -4,8 +4,11 @@
 #
 """gr-rfseek: RF source seeking using frequency measurements (GNU Radio OOT module).
 
-Blocks: channel_source (simulated emitter, scatterers, UAV, CFO).
-Core classes: scenario, world, rng.
+Blocks: channel_source (simulated emitter, scatterers, UAV, CFO), doppler_estimator
+(zero-padded FFT frequency estimator), seeking_controller (the paper's seeker), seek_view
+(QT GUI trajectory and frequency plots).
+Core classes: scenario, world, rng, tone_estimator, seeker, simulation.
+Helpers: flowgraphs.closed_loop, plots.
 """
 
 from .rfseek_python import *  # noqa: F401,F403

@@ -23,10 +23,10 @@ namespace rfseek {
 
 //! Every constant of the seeking strategies (angles in radians).
 struct RFSEEK_API seeker_config {
-    std::string strategy = "paper";         //!< "paper" or "paper_no_circle"
-    double speed_mps = 10.0;                //!< v
-    double carrier_hz = 2.0e9;              //!< f_c (for f_d,max = v f_c / c)
-    double slot_period_s = 0.05;            //!< T_slot
+    std::string strategy = "paper"; //!< "paper", "paper_no_circle" or "rss_baseline"
+    double speed_mps = 10.0;        //!< v
+    double carrier_hz = 2.0e9;      //!< f_c (for f_d,max = v f_c / c)
+    double slot_period_s = 0.05;    //!< T_slot
     double delta_rad = 0.17453292519943295; //!< Stage-2 perturbation delta (10 deg)
     int m_slots = 20;                       //!< M: slots per half step
     double circle_radius_m = 100.0;         //!< R_c of the Stage-1 circle
@@ -40,7 +40,17 @@ struct RFSEEK_API seeker_config {
         10; //!< slots without valid measurements before holding course
     std::optional<double> initial_heading_rad; //!< Stage-2 start for paper_no_circle
                                                //!< (None: the first measured heading)
-    std::uint64_t seed = 1;                    //!< random turning sense of the circle
+    std::uint64_t seed = 1;                    //!< circle turning sense, RSS tumbles
+    // rss_baseline (run-and-tumble on received power, after Wadhwa et al. 2011)
+    //! Slots per run (measurements judged together).
+    int rss_run_slots = 100;
+    //! A run is "along the LOS" while its fading rate stays below this fraction of the
+    //! typical (75th percentile) rate seen on the last scan circle.
+    double rss_good_ratio = 0.5;
+    //! Turn back when the power trend along a heading fell this much (dB).
+    double rss_reverse_db = 3.0;
+    //! Runs on a heading before judging toward or away.
+    int rss_min_runs = 10;
 
     double max_doppler_hz() const;
     double effective_outlier_threshold_hz() const;

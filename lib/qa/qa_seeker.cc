@@ -7,6 +7,7 @@
  * robustness to invalid and missing measurements, and eq. 4.
  */
 
+#include <gr-rfseek/rng.h>
 #include <gr-rfseek/seeker.h>
 #include <gr-rfseek/simulation.h>
 #include <gr-rfseek/tone_estimator.h>
@@ -270,4 +271,66 @@ TEST(seeker, bad_configuration_names_the_field)
             EXPECT_NE(std::string(e.what()).find("seeker_config."), std::string::npos);
         }
     }
+}
+
+TEST(rss_baseline, uses_only_power_and_is_deterministic)
+{
+    // Same powers, different frequencies: the same commands.
+    auto run = [](double freq_scale) {
+        seeker_config cfg;
+        cfg.strategy = "rss_baseline";
+        cfg.seed = 5;
+        auto sk = seeker::make(cfg);
+        rng g(9);
+        std::vector<double> out;
+        for (std::uint64_t k = 0; k < 4000; ++k) {
+            measurement m;
+            m.slot = k;
+            m.valid = true;
+            m.power_db = -70.0 + 3.0 * g.normal();
+            m.freq_hz = freq_scale * g.normal();
+            m.has_heading = true;
+            m.heading_rad = 0.3;
+            out.push_back(sk->update(m).heading_rad);
+        }
+        return out;
+    };
+    EXPECT_EQ(run(1.0), run(1000.0));
+}
+
+TEST(rss_baseline, scan_finds_the_line_of_sight_axis)
+{
+    // The fading rate is smallest along the line of sight: the first scan circle's axis
+    // (direction mod pi) points at the emitter.
+    int within = 0;
+    const int seeds = 10;
+    for (int seed = 1; seed <= seeds; ++seed) {
+        scenario sc;
+        sc.seed = seed;
+        world w(sc);
+        tone_estimator est(sc.samp_rate_hz, sc.window_len, sc.fft_len);
+        auto sk = seeker::make(simulation::seeker_for(sc, "rss_baseline"));
+        std::vector<std::complex<float>> buf(sc.window_len);
+        for (int k = 0; k < 3000; ++k) {
+            w.synthesize(buf.data(), buf.size());
+            const auto e = est.estimate(buf.data());
+            measurement m;
+            m.slot = w.slot();
+            m.valid = e.valid;
+            m.power_db = e.power_db;
+            m.has_heading = true;
+            m.heading_rad = w.measured_heading_rad();
+            const command c = sk->update(m);
+            if (c.update) {
+                const double err =
+                    world::wrap(c.theta_est_rad - w.bearing_to_emitter_rad());
+                const double axis_err = std::abs(world::wrap(2.0 * err)) / 2.0; // mod pi
+                if (axis_err <= 10.0 * DEG)
+                    ++within;
+                break;
+            }
+            w.advance(c.heading_rad);
+        }
+    }
+    EXPECT_GE(within, 8);
 }

@@ -4,7 +4,7 @@
  */
 
 /* BINDTOOL_HEADER_FILE(seeker.h) */
-/* BINDTOOL_HEADER_FILE_HASH(cc05cf0da6c4f4a0247d62938e5a6fb9) */
+/* BINDTOOL_HEADER_FILE_HASH(8edab2e0f8d413e029c48359acf2a3b4) */
 
 #include <gr-rfseek/seeker.h>
 #include <pybind11/pybind11.h>
@@ -33,7 +33,7 @@ void bind_seeker(py::module& m)
         return s;
     }));
 #define RW(NAME, DOC) c.def_readwrite(#NAME, &seeker_config::NAME, DOC)
-    RW(strategy, "'paper' or 'paper_no_circle'");
+    RW(strategy, "'paper', 'paper_no_circle' or 'rss_baseline'");
     RW(speed_mps, "v (m/s)");
     RW(carrier_hz, "f_c (Hz)");
     RW(slot_period_s, "T_slot (s)");
@@ -48,7 +48,13 @@ void bind_seeker(py::module& m)
     RW(hold_after_missing, "slots without valid measurements before holding course");
     RW(initial_heading_rad,
        "Stage-2 start for paper_no_circle (None: first measured heading)");
-    RW(seed, "seed (random turning sense of the circle)");
+    RW(seed, "seed (circle turning sense, RSS tumbles)");
+    RW(rss_run_slots, "rss_baseline: slots per run");
+    RW(rss_good_ratio,
+       "rss_baseline: fading-rate fraction of the recent maximum for a good run");
+    RW(rss_reverse_db,
+       "rss_baseline: turn back when the power fell this much along a run");
+    RW(rss_min_runs, "rss_baseline: runs on a heading before judging toward or away");
 #undef RW
     c.def("validate", &seeker_config::validate)
         .def_property_readonly("max_doppler_hz", &seeker_config::max_doppler_hz)

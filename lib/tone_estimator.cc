@@ -16,7 +16,7 @@
  * frequency; the noise is the window energy the tone does not explain.
  */
 
-#include "peak_search.h"
+#include "kernels.h"
 #include <fftw3.h>
 #include <gr-rfseek/tone_estimator.h>
 #include <volk/volk.h>

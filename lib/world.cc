@@ -14,6 +14,7 @@
  * f_o(t) = f_o(0) + a t + w(t), whose phase is integrated continuously (item 2).
  */
 
+#include "kernels.h"
 #include <gr-rfseek/world.h>
 #include <volk/volk.h>
 #include <algorithm>
@@ -26,9 +27,6 @@ namespace rfseek {
 
 namespace {
 constexpr double TWO_PI = 2.0 * M_PI;
-
-thread_local std::vector<std::complex<float>> tl_ones;
-thread_local std::vector<std::complex<float>> tl_tmp;
 } // namespace
 
 double world::wrap(double a)
@@ -171,34 +169,31 @@ void world::synthesize(std::complex<float>* out, std::size_t n) const
     const std::size_t nb = std::min<std::size_t>(n, d_sc.window_len);
     const double ts = 1.0 / d_sc.samp_rate_hz;
 
-    if (tl_ones.size() < nb) {
-        tl_ones.assign(nb, std::complex<float>(1.0f, 0.0f));
-        tl_tmp.resize(nb);
-    }
-    // Sum over paths of a_p exp(j 2 pi f_p n Ts): the unit phasor of each path is made
-    // conjugated so the conjugate-multiply-add kernel yields a_p z_p^n.
-    for (const auto& p : paths()) {
-        const auto zc = std::complex<float>(std::polar(1.0, -TWO_PI * p.doppler_hz * ts));
-        lv_32fc_t phase = lv_cmake(1.0f, 0.0f);
-        volk_32fc_s32fc_x2_rotator_32fc(tl_tmp.data(), tl_ones.data(), zc, &phase, nb);
-        volk_32fc_x2_s32fc_multiply_conjugate_add_32fc(
-            out, out, tl_tmp.data(), std::complex<float>(p.amplitude), nb);
-    }
-    // Common carrier offset: frequency at the middle of the beacon (the drift changes
-    // it by a * T, 0.005 Hz at the reference scenario, within the window).
+    // Every path rotates at its Doppler plus the common carrier offset, taken at the
+    // middle of the beacon (the drift changes it by a * T, 0.005 Hz at the reference
+    // scenario, within the window); the offset's phase is the integral of f_o.
     const double f_o = d_cfo_hz + d_cfo_drift * 0.5 * nb * ts;
-    lv_32fc_t phase = std::complex<float>(std::polar(1.0, d_cfo_phase));
-    const auto zo = std::complex<float>(std::polar(1.0, TWO_PI * f_o * ts));
-    volk_32fc_s32fc_x2_rotator_32fc(out, out, zo, &phase, nb);
+    const std::complex<double> rot = std::polar(1.0, d_cfo_phase);
+    const auto ps = paths();
+    std::vector<std::complex<double>> amp(ps.size());
+    std::vector<double> cyc(ps.size());
+    for (std::size_t p = 0; p < ps.size(); ++p) {
+        amp[p] = ps[p].amplitude * rot;
+        cyc[p] = (ps[p].doppler_hz + f_o) * ts;
+    }
+    detail::add_tones(out,
+                      static_cast<std::uint32_t>(nb),
+                      amp.data(),
+                      cyc.data(),
+                      static_cast<std::uint32_t>(amp.size()));
 
     if (d_sc.add_noise) {
-        rng g(d_sc.seed, STREAM_NOISE, d_slot);
-        const double sigma = std::sqrt(0.5 * d_noise_power);
-        for (std::size_t i = 0; i < n; ++i) {
-            const double re = g.normal();
-            const double im = g.normal();
-            out[i] += std::complex<float>(sigma * re, sigma * im);
-        }
+        std::uint64_t key = d_sc.seed ^ 0x6E6F697365ULL; // per-slot noise stream
+        rng g(key, STREAM_NOISE, d_slot);
+        detail::add_gaussian_noise(out,
+                                   static_cast<std::uint32_t>(n),
+                                   static_cast<float>(std::sqrt(0.5 * d_noise_power)),
+                                   g.next());
     }
 }
 

@@ -1,0 +1,581 @@
+/*
+ * Copyright 2026 gr-rfseek authors.
+ * SPDX-License-Identifier: GPL-3.0-or-later
+ *
+ * rfseek-montecarlo: the paper's Monte Carlo study (Sec. V) on the core simulation, the
+ * very code the blocks run: every beacon synthesised and FFT'd. Several strategies run on
+ * the same seeds; results do not depend on the thread count (run i uses scenario seed
+ * S + i, and rows are written in run order).
+ */
+
+#include <fftw3.h>
+#include <gr-rfseek/simulation.h>
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <iostream>
+#include <mutex>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <thread>
+#include <vector>
+
+using namespace gr::rfseek;
+using clk = std::chrono::steady_clock;
+
+namespace {
+
+const char* USAGE = R"(usage: rfseek-montecarlo [options]
+
+Runs the closed loop (world + estimator + seeker) many times and summarises the distance
+flown to reach the success radius, per strategy, on the same seeds.
+
+  --runs N              runs per strategy (default 100)
+  --seed S              run i uses scenario seed S + i (default 1)
+  --strategy A[,B...]   paper, paper_no_circle, rss_baseline (default paper)
+  --threads T           worker threads (default: all cores)
+  --out FILE.json       results (default montecarlo.json); rows also in FILE.csv
+  --csv FILE.csv        where to write the rows (default: --out with .csv)
+  --set KEY=VALUE       a scenario field (any of scenario.keys(), e.g. snr_db=-5),
+                        a seeker constant (delta_deg, delta_rad, m_slots, circle_radius_m,
+                        moving_average_len, outlier_threshold_hz, literal_eq4,
+                        relock_count, hold_after_missing, rss_run_slots, rss_good_ratio,
+                        rss_reverse_db, rss_min_runs) or an estimator setting
+                        (interpolator, window, min_freq_hz, max_freq_hz); repeatable
+  --scenario FILE       KEY=VALUE lines (# comments) or a flat JSON object, as --set
+  --sweep KEY=V1,V2,..  repeat the study for each value of one --set key
+  --quiet               no progress bar
+  --help
+)";
+
+struct settings {
+    scenario sc;
+    std::vector<std::pair<std::string, std::string>> seeker_sets;
+    estimator_config est;
+};
+
+bool is_seeker_key(const std::string& k)
+{
+    static const char* keys[] = {
+        "delta_deg",       "delta_rad",          "m_slots",
+        "circle_radius_m", "moving_average_len", "outlier_threshold_hz",
+        "literal_eq4",     "relock_count",       "hold_after_missing",
+        "rss_run_slots",   "rss_good_ratio",     "rss_reverse_db",
+        "rss_min_runs"
+    };
+    for (const char* s : keys)
+        if (k == s)
+            return true;
+    return false;
+}
+
+double num(const std::string& key, const std::string& v)
+{
+    char* end = nullptr;
+    const double d = std::strtod(v.c_str(), &end);
+    if (v.empty() || *end != '\0')
+        throw std::invalid_argument(key + ": cannot parse '" + v + "' as a number");
+    return d;
+}
+
+void apply_seeker(seeker_config& c, const std::string& k, const std::string& v)
+{
+    if (k == "delta_deg")
+        c.delta_rad = num(k, v) * M_PI / 180.0;
+    else if (k == "delta_rad")
+        c.delta_rad = num(k, v);
+    else if (k == "m_slots")
+        c.m_slots = static_cast<int>(num(k, v));
+    else if (k == "circle_radius_m")
+        c.circle_radius_m = num(k, v);
+    else if (k == "moving_average_len")
+        c.moving_average_len = static_cast<int>(num(k, v));
+    else if (k == "outlier_threshold_hz")
+        c.outlier_threshold_hz = num(k, v);
+    else if (k == "literal_eq4")
+        c.literal_eq4 = (v == "true" || v == "1" || v == "True");
+    else if (k == "relock_count")
+        c.relock_count = static_cast<int>(num(k, v));
+    else if (k == "hold_after_missing")
+        c.hold_after_missing = static_cast<int>(num(k, v));
+    else if (k == "rss_run_slots")
+        c.rss_run_slots = static_cast<int>(num(k, v));
+    else if (k == "rss_good_ratio")
+        c.rss_good_ratio = num(k, v);
+    else if (k == "rss_reverse_db")
+        c.rss_reverse_db = num(k, v);
+    else if (k == "rss_min_runs")
+        c.rss_min_runs = static_cast<int>(num(k, v));
+}
+
+void apply(settings& s, const std::string& key, const std::string& value)
+{
+    if (is_seeker_key(key))
+        s.seeker_sets.emplace_back(key, value);
+    else if (key == "interpolator")
+        s.est.interpolator = value;
+    else if (key == "window")
+        s.est.window = value;
+    else if (key == "min_freq_hz")
+        s.est.min_freq_hz = num(key, value);
+    else if (key == "max_freq_hz")
+        s.est.max_freq_hz = num(key, value);
+    else
+        s.sc.set(key, value); // throws for an unknown key
+}
+
+std::string trim(std::string s)
+{
+    const auto a = s.find_first_not_of(" \t\r\n\"");
+    const auto b = s.find_last_not_of(" \t\r\n\"");
+    return a == std::string::npos ? "" : s.substr(a, b - a + 1);
+}
+
+void apply_kv(settings& s, const std::string& kv, const char sep)
+{
+    const auto p = kv.find(sep);
+    if (p == std::string::npos)
+        throw std::invalid_argument("expected KEY" + std::string(1, sep) +
+                                    "VALUE, got '" + kv + "'");
+    std::string v = trim(kv.substr(p + 1));
+    if (v == "null")
+        v = "none";
+    apply(s, trim(kv.substr(0, p)), v);
+}
+
+void load_file(settings& s, const std::string& path)
+{
+    std::ifstream f(path);
+    if (!f)
+        throw std::invalid_argument("--scenario: cannot read " + path);
+    std::stringstream ss;
+    ss << f.rdbuf();
+    std::string text = trim(ss.str());
+    if (!text.empty() && text.front() == '{') { // flat JSON object
+        text = text.substr(1, text.size() - 2);
+        std::stringstream items(text);
+        std::string item;
+        while (std::getline(items, item, ','))
+            if (!trim(item).empty())
+                apply_kv(s, item, ':');
+        return;
+    }
+    std::stringstream lines(text);
+    std::string line;
+    while (std::getline(lines, line)) {
+        line = trim(line.substr(0, line.find('#')));
+        if (!line.empty())
+            apply_kv(s, line, '=');
+    }
+}
+
+struct row {
+    std::string strategy;
+    std::uint64_t seed = 0;
+    std::string sweep_value;
+    run_summary r;
+};
+
+double percentile(std::vector<double> v, double q)
+{
+    if (v.empty())
+        return NAN;
+    std::sort(v.begin(), v.end());
+    const double pos = q * (v.size() - 1);
+    const std::size_t i = static_cast<std::size_t>(pos);
+    const double f = pos - i;
+    return i + 1 < v.size() ? v[i] * (1 - f) + v[i + 1] * f : v[i];
+}
+
+std::string jnum(double v)
+{
+    if (!std::isfinite(v))
+        return "null";
+    std::ostringstream os;
+    os.precision(10);
+    os << v;
+    return os.str();
+}
+
+std::string jstr(const std::string& s)
+{
+    std::string o = "\"";
+    for (char c : s) {
+        if (c == '"' || c == '\\')
+            o += '\\';
+        o += c;
+    }
+    return o + "\"";
+}
+
+std::string summary_json(const std::vector<const row*>& rows, double shortest)
+{
+    std::vector<double> d, ratio, s1;
+    int success = 0;
+    double t = 0.0;
+    for (const row* r : rows) {
+        d.push_back(r->r.distance_m);
+        ratio.push_back(r->r.ratio);
+        success += r->r.success;
+        t += r->r.time_s;
+        if (r->r.has_stage1)
+            s1.push_back(std::abs(r->r.stage1_heading_error_rad) * 180.0 / M_PI);
+    }
+    double md = 0, mr = 0;
+    for (std::size_t i = 0; i < d.size(); ++i) {
+        md += d[i];
+        mr += ratio[i];
+    }
+    const double n = std::max<std::size_t>(rows.size(), 1);
+    std::ostringstream o;
+    o << "{\"runs\": " << rows.size() << ", \"success_rate\": " << jnum(success / n)
+      << ", \"mean_distance_m\": " << jnum(md / n)
+      << ", \"median_distance_m\": " << jnum(percentile(d, 0.5))
+      << ", \"p90_distance_m\": " << jnum(percentile(d, 0.9))
+      << ", \"mean_ratio\": " << jnum(mr / n)
+      << ", \"median_ratio\": " << jnum(percentile(ratio, 0.5))
+      << ", \"p90_ratio\": " << jnum(percentile(ratio, 0.9))
+      << ", \"shortest_path_m\": " << jnum(shortest)
+      << ", \"mean_time_s\": " << jnum(t / n)
+      << ", \"stage1_abs_error_deg_median\": " << jnum(percentile(s1, 0.5))
+      << ", \"stage1_abs_error_deg_p90\": " << jnum(percentile(s1, 0.9)) << "}";
+    return o.str();
+}
+
+std::vector<std::string> split(const std::string& s, char sep)
+{
+    std::vector<std::string> out;
+    std::stringstream ss(s);
+    std::string item;
+    while (std::getline(ss, item, sep))
+        if (!trim(item).empty())
+            out.push_back(trim(item));
+    return out;
+}
+
+double fftw_floor_us(int n)
+{
+    auto* in = fftwf_alloc_complex(n);
+    auto* out = fftwf_alloc_complex(n);
+    fftwf_plan p = fftwf_plan_dft_1d(n, in, out, FFTW_FORWARD, FFTW_MEASURE);
+    for (int i = 0; i < n; ++i)
+        in[i][0] = in[i][1] = static_cast<float>(i % 7);
+    fftwf_execute(p);
+    const int reps = 20000;
+    const auto t0 = clk::now();
+    for (int i = 0; i < reps; ++i)
+        fftwf_execute(p);
+    const double us =
+        std::chrono::duration<double, std::micro>(clk::now() - t0).count() / reps;
+    fftwf_destroy_plan(p);
+    fftwf_free(in);
+    fftwf_free(out);
+    return us;
+}
+
+} // namespace
+
+int main(int argc, char** argv)
+{
+    int runs = 100;
+    std::uint64_t seed = 1;
+    std::vector<std::string> strategies{ "paper" };
+    unsigned threads = std::max(1u, std::thread::hardware_concurrency());
+    std::string out = "montecarlo.json", csv;
+    std::string sweep_key;
+    std::vector<std::string> sweep_values{ "" };
+    bool quiet = false;
+    settings base;
+    std::string cmdline;
+    for (int i = 0; i < argc; ++i)
+        cmdline += (i ? " " : "") + std::string(argv[i]);
+
+    try {
+        for (int i = 1; i < argc; ++i) {
+            const std::string a = argv[i];
+            auto next = [&]() -> std::string {
+                if (i + 1 >= argc)
+                    throw std::invalid_argument(a + " needs a value");
+                return argv[++i];
+            };
+            if (a == "--help" || a == "-h") {
+                std::cout << USAGE;
+                return 0;
+            } else if (a == "--runs") {
+                runs = static_cast<int>(num(a, next()));
+                if (runs < 1)
+                    throw std::invalid_argument("--runs must be >= 1");
+            } else if (a == "--seed") {
+                seed = std::strtoull(next().c_str(), nullptr, 10);
+            } else if (a == "--strategy") {
+                strategies = split(next(), ',');
+                const auto known = seeker::strategies();
+                for (const auto& s : strategies)
+                    if (std::find(known.begin(), known.end(), s) == known.end())
+                        throw std::invalid_argument("--strategy: unknown '" + s +
+                                                    "' (paper, paper_no_circle, "
+                                                    "rss_baseline)");
+            } else if (a == "--threads") {
+                threads = static_cast<unsigned>(num(a, next()));
+                if (threads < 1)
+                    throw std::invalid_argument("--threads must be >= 1");
+            } else if (a == "--out") {
+                out = next();
+            } else if (a == "--csv") {
+                csv = next();
+            } else if (a == "--set") {
+                apply_kv(base, next(), '=');
+            } else if (a == "--scenario") {
+                load_file(base, next());
+            } else if (a == "--sweep") {
+                const std::string s = next();
+                const auto p = s.find('=');
+                if (p == std::string::npos)
+                    throw std::invalid_argument("--sweep expects KEY=V1,V2,...");
+                sweep_key = trim(s.substr(0, p));
+                sweep_values = split(s.substr(p + 1), ',');
+                if (sweep_values.empty())
+                    throw std::invalid_argument("--sweep needs at least one value");
+            } else if (a == "--quiet") {
+                quiet = true;
+            } else {
+                throw std::invalid_argument("unknown option '" + a + "' (see --help)");
+            }
+        }
+        if (csv.empty())
+            csv = (out.size() > 5 && out.substr(out.size() - 5) == ".json"
+                       ? out.substr(0, out.size() - 5)
+                       : out) +
+                  ".csv";
+        // Validate every configuration before the long run starts.
+        for (const auto& v : sweep_values) {
+            settings s = base;
+            if (!sweep_key.empty())
+                apply(s, sweep_key, v);
+            s.sc.validate();
+            for (const auto& st : strategies) {
+                seeker_config c = simulation::seeker_for(s.sc, st);
+                for (const auto& kv : s.seeker_sets)
+                    apply_seeker(c, kv.first, kv.second);
+                simulation check(s.sc, c, s.est);
+            }
+        }
+    } catch (const std::exception& e) {
+        std::cerr << "rfseek-montecarlo: error: " << e.what() << "\n";
+        return 2;
+    }
+
+    const double fft_us = fftw_floor_us(base.sc.fft_len);
+    const std::size_t total = sweep_values.size() * strategies.size() * runs;
+    std::vector<row> rows(total);
+    std::atomic<std::size_t> next_job{ 0 }, done{ 0 };
+    std::atomic<std::uint64_t> slots{ 0 };
+    std::mutex progress_lock;
+    const auto t0 = clk::now();
+    auto last_print = t0;
+
+    auto print_progress = [&](bool final) {
+        const double el = std::chrono::duration<double>(clk::now() - t0).count();
+        const std::size_t d = done.load();
+        const double rate = el > 0 ? d / el : 0.0;
+        const double eta = rate > 0 ? (total - d) / rate : 0.0;
+        const int width = 30;
+        const int fill = static_cast<int>(width * double(d) / total);
+        std::fprintf(stderr,
+                     "\r[%s%s] %zu/%zu runs  %.1f runs/s  elapsed %.0f s  ETA %.0f s   ",
+                     std::string(fill, '#').c_str(),
+                     std::string(width - fill, '.').c_str(),
+                     d,
+                     total,
+                     rate,
+                     el,
+                     eta);
+        if (final)
+            std::fprintf(stderr, "\n");
+        std::fflush(stderr);
+    };
+
+    auto worker = [&]() {
+        for (;;) {
+            const std::size_t j = next_job.fetch_add(1);
+            if (j >= total)
+                return;
+            const std::size_t per_value = strategies.size() * runs;
+            const std::size_t vi = j / per_value;
+            const std::size_t si = (j % per_value) / runs;
+            const std::size_t ri = j % runs;
+            settings s = base;
+            if (!sweep_key.empty())
+                apply(s, sweep_key, sweep_values[vi]);
+            s.sc.seed = seed + ri;
+            seeker_config c = simulation::seeker_for(s.sc, strategies[si]);
+            for (const auto& kv : s.seeker_sets)
+                apply_seeker(c, kv.first, kv.second);
+            const run_result res = simulation(s.sc, c, s.est).run(false);
+            rows[j] = row{ strategies[si], s.sc.seed, sweep_values[vi], res.summary };
+            slots += res.summary.slots;
+            ++done;
+            if (!quiet) {
+                std::lock_guard<std::mutex> lock(progress_lock);
+                const auto now = clk::now();
+                if (now - last_print > std::chrono::milliseconds(250)) {
+                    last_print = now;
+                    print_progress(false);
+                }
+            }
+        }
+    };
+    std::vector<std::thread> pool;
+    for (unsigned t = 0; t < std::min<std::size_t>(threads, total); ++t)
+        pool.emplace_back(worker);
+    for (auto& t : pool)
+        t.join();
+    if (!quiet)
+        print_progress(true);
+    const double wall = std::chrono::duration<double>(clk::now() - t0).count();
+
+    // JSON
+    std::ostringstream j;
+    j << "{\n  \"tool\": \"rfseek-montecarlo\",\n  \"command\": " << jstr(cmdline)
+      << ",\n  \"runs\": " << runs << ",\n  \"seed\": " << seed
+      << ",\n  \"strategies\": [";
+    for (std::size_t i = 0; i < strategies.size(); ++i)
+        j << (i ? ", " : "") << jstr(strategies[i]);
+    j << "],\n  \"scenario\": " << base.sc.to_json() << ",\n  \"seeker_overrides\": {";
+    for (std::size_t i = 0; i < base.seeker_sets.size(); ++i)
+        j << (i ? ", " : "") << jstr(base.seeker_sets[i].first) << ": "
+          << jstr(base.seeker_sets[i].second);
+    j << "},\n  \"estimator\": {\"window\": " << jstr(base.est.window)
+      << ", \"interpolator\": " << jstr(base.est.interpolator)
+      << ", \"min_freq_hz\": " << jnum(base.est.min_freq_hz)
+      << ", \"max_freq_hz\": " << jnum(base.est.max_freq_hz) << "},\n";
+    if (!sweep_key.empty()) {
+        j << "  \"sweep\": {\"key\": " << jstr(sweep_key) << ", \"values\": [";
+        for (std::size_t i = 0; i < sweep_values.size(); ++i)
+            j << (i ? ", " : "") << jstr(sweep_values[i]);
+        j << "], \"summary\": [\n";
+        for (std::size_t v = 0; v < sweep_values.size(); ++v) {
+            settings s = base;
+            apply(s, sweep_key, sweep_values[v]);
+            j << "    {\"value\": " << jstr(sweep_values[v]);
+            for (const auto& st : strategies) {
+                std::vector<const row*> sel;
+                for (const auto& r : rows)
+                    if (r.strategy == st && r.sweep_value == sweep_values[v])
+                        sel.push_back(&r);
+                j << ", " << jstr(st) << ": "
+                  << summary_json(sel, s.sc.shortest_path_m());
+            }
+            j << "}" << (v + 1 < sweep_values.size() ? "," : "") << "\n";
+        }
+        j << "  ]},\n";
+    }
+    j << "  \"rows\": [\n";
+    for (std::size_t i = 0; i < rows.size(); ++i) {
+        const auto& r = rows[i];
+        j << "    {\"seed\": " << r.seed << ", \"strategy\": " << jstr(r.strategy);
+        if (!sweep_key.empty())
+            j << ", \"sweep_value\": " << jstr(r.sweep_value);
+        j << ", \"distance_m\": " << jnum(r.r.distance_m)
+          << ", \"ratio\": " << jnum(r.r.ratio) << ", \"time_s\": " << jnum(r.r.time_s)
+          << ", \"success\": " << (r.r.success ? "true" : "false")
+          << ", \"slots\": " << r.r.slots << ", \"stage1_heading_error_deg\": "
+          << (r.r.has_stage1 ? jnum(r.r.stage1_heading_error_rad * 180.0 / M_PI) : "null")
+          << "}" << (i + 1 < rows.size() ? "," : "") << "\n";
+    }
+    j << "  ],\n  \"summary\": {";
+    const std::string last_value = sweep_values.back();
+    {
+        settings s = base;
+        if (!sweep_key.empty())
+            apply(s, sweep_key, last_value);
+        for (std::size_t k = 0; k < strategies.size(); ++k) {
+            std::vector<const row*> sel;
+            for (const auto& r : rows)
+                if (r.strategy == strategies[k] && r.sweep_value == last_value)
+                    sel.push_back(&r);
+            j << (k ? ",\n    " : "\n    ") << jstr(strategies[k]) << ": "
+              << summary_json(sel, s.sc.shortest_path_m());
+        }
+    }
+    const double per_run = wall * std::min<double>(threads, total) / total;
+    j << "\n  },\n  \"timing\": {\"threads\": " << threads
+      << ", \"wall_s\": " << jnum(wall) << ", \"cpu_s_per_run\": " << jnum(per_run)
+      << ", \"us_per_slot\": "
+      << jnum(1e6 * wall * std::min<double>(threads, total) / slots)
+      << ", \"fftw_us\": " << jnum(fft_us) << ", \"slots\": " << slots.load() << "}\n}\n";
+    std::ofstream(out) << j.str();
+
+    std::ofstream c(csv);
+    c << "seed,strategy" << (sweep_key.empty() ? "" : ",sweep_value")
+      << ",distance_m,ratio,time_s,success,slots,stage1_heading_error_deg\n";
+    for (const auto& r : rows) {
+        c << r.seed << "," << r.strategy;
+        if (!sweep_key.empty())
+            c << "," << r.sweep_value;
+        c << "," << jnum(r.r.distance_m) << "," << jnum(r.r.ratio) << ","
+          << jnum(r.r.time_s) << "," << (r.r.success ? 1 : 0) << "," << r.r.slots << ","
+          << (r.r.has_stage1 ? jnum(r.r.stage1_heading_error_rad * 180.0 / M_PI) : "")
+          << "\n";
+    }
+
+    // Console summary
+    std::printf("rfseek-montecarlo: %d runs x %zu strategies%s, %u threads, %.1f s "
+                "(%.3f s per run per thread, %.2f us per slot, FFTW %d: %.2f us)\n",
+                runs,
+                strategies.size(),
+                sweep_key.empty() ? ""
+                                  : (" x " + std::to_string(sweep_values.size()) +
+                                     " values of " + sweep_key)
+                                        .c_str(),
+                threads,
+                wall,
+                per_run,
+                1e6 * wall * std::min<double>(threads, total) / slots,
+                base.sc.fft_len,
+                fft_us);
+    for (const auto& v : sweep_values) {
+        if (!sweep_key.empty())
+            std::printf("%s = %s\n", sweep_key.c_str(), v.c_str());
+        std::printf("  %-16s %8s %10s %10s %10s %8s %8s %8s\n",
+                    "strategy",
+                    "success",
+                    "mean_m",
+                    "median_m",
+                    "p90_m",
+                    "mean_x",
+                    "med_x",
+                    "p90_x");
+        for (const auto& st : strategies) {
+            std::vector<double> d, ratio;
+            int ok = 0;
+            for (const auto& r : rows)
+                if (r.strategy == st && r.sweep_value == v) {
+                    d.push_back(r.r.distance_m);
+                    ratio.push_back(r.r.ratio);
+                    ok += r.r.success;
+                }
+            double md = 0, mr = 0;
+            for (std::size_t i = 0; i < d.size(); ++i) {
+                md += d[i];
+                mr += ratio[i];
+            }
+            std::printf("  %-16s %7.1f%% %10.0f %10.0f %10.0f %8.3f %8.3f %8.3f\n",
+                        st.c_str(),
+                        100.0 * ok / d.size(),
+                        md / d.size(),
+                        percentile(d, 0.5),
+                        percentile(d, 0.9),
+                        mr / d.size(),
+                        percentile(ratio, 0.5),
+                        percentile(ratio, 0.9));
+        }
+    }
+    std::printf("wrote %s and %s\n", out.c_str(), csv.c_str());
+    return 0;
+}

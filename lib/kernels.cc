@@ -1,0 +1,317 @@
+/* -*- c++ -*- */
+/*
+ * Copyright 2026 gr-rfseek authors.
+ * SPDX-License-Identifier: GPL-3.0-or-later
+ */
+
+#include "kernels.h"
+#include <cmath>
+#include <cstring>
+
+namespace gr {
+namespace rfseek {
+namespace detail {
+
+namespace {
+typedef float v8f __attribute__((vector_size(32)));
+typedef int v8i __attribute__((vector_size(32)));
+typedef unsigned int v8u __attribute__((vector_size(32)));
+
+constexpr std::uint32_t BLOCK = 64;
+constexpr std::uint32_t MAX_PATHS = 256;
+
+std::uint64_t splitmix(std::uint64_t& x)
+{
+    x += 0x9E3779B97F4A7C15ULL;
+    std::uint64_t z = x;
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
+    return z ^ (z >> 31);
+}
+} // namespace
+
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+__attribute__((target_clones("avx2", "default")))
+#endif
+peak peak_search(const std::complex<float>* x, std::uint32_t n)
+{
+    const float* f = reinterpret_cast<const float*>(x);
+    const std::uint32_t blocks = n / 8;
+    v8f best = { -1, -1, -1, -1, -1, -1, -1, -1 };
+    v8i best_block = { 0, 0, 0, 0, 0, 0, 0, 0 };
+    v8f sum = { 0, 0, 0, 0, 0, 0, 0, 0 };
+    // Squares, pair sums within 128-bit lanes, then a blend: lane l holds the power of
+    // complex element LANE_ELEMENT[l] of the block of 8.
+    const v8i swap_pairs = { 1, 0, 3, 2, 5, 4, 7, 6 };
+    const v8i take_odd_from_hi = { 0, 9, 2, 11, 4, 13, 6, 15 };
+    static const std::uint32_t LANE_ELEMENT[8] = { 0, 4, 1, 5, 2, 6, 3, 7 };
+    for (std::uint32_t b = 0; b < blocks; ++b) {
+        v8f lo, hi;
+        std::memcpy(&lo, f + 16 * b, sizeof(lo));
+        std::memcpy(&hi, f + 16 * b + 8, sizeof(hi));
+        lo *= lo;
+        hi *= hi;
+        lo += __builtin_shuffle(lo, swap_pairs);
+        hi += __builtin_shuffle(hi, swap_pairs);
+        const v8f p = __builtin_shuffle(lo, hi, take_odd_from_hi);
+        sum += p;
+        const v8i gt = p > best;
+        best = gt ? p : best;
+        const v8i bb = { static_cast<int>(b), static_cast<int>(b), static_cast<int>(b),
+                         static_cast<int>(b), static_cast<int>(b), static_cast<int>(b),
+                         static_cast<int>(b), static_cast<int>(b) };
+        best_block = gt ? bb : best_block;
+    }
+    peak r{ 0, -1.0f, 0.0 };
+    for (int lane = 0; lane < 8; ++lane) {
+        r.total += sum[lane];
+        if (blocks == 0)
+            continue;
+        const std::uint32_t idx =
+            static_cast<std::uint32_t>(best_block[lane]) * 8 + LANE_ELEMENT[lane];
+        if (best[lane] > r.value || (best[lane] == r.value && idx < r.index)) {
+            r.value = best[lane];
+            r.index = idx;
+        }
+    }
+    for (std::uint32_t k = blocks * 8; k < n; ++k) {
+        const float p = std::norm(x[k]);
+        r.total += p;
+        if (p > r.value) {
+            r.value = p;
+            r.index = k;
+        }
+    }
+    return r;
+}
+
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+__attribute__((target_clones("avx2", "default")))
+#endif
+std::complex<double>
+demod_dot(const std::complex<float>* x,
+          std::uint32_t n,
+          const float* a,
+          const float* br,
+          const float* bi)
+{
+    const float* f = reinterpret_cast<const float*>(x);
+    const v8i even = { 0, 2, 4, 6, 8, 10, 12, 14 };
+    const v8i odd = { 1, 3, 5, 7, 9, 11, 13, 15 };
+    double tr = 0.0, ti = 0.0;
+    const std::uint32_t full = n / 64;
+    for (std::uint32_t blk = 0; blk < full; ++blk) {
+        const float ar = a[2 * blk], ai = a[2 * blk + 1];
+        v8f sr = { 0, 0, 0, 0, 0, 0, 0, 0 }, si = sr;
+        for (int j = 0; j < 8; ++j) {
+            v8f lo, hi, vbr, vbi;
+            std::memcpy(&lo, f + 128 * blk + 16 * j, sizeof(lo));
+            std::memcpy(&hi, f + 128 * blk + 16 * j + 8, sizeof(hi));
+            std::memcpy(&vbr, br + 8 * j, sizeof(vbr));
+            std::memcpy(&vbi, bi + 8 * j, sizeof(vbi));
+            const v8f xr = __builtin_shuffle(lo, hi, even);
+            const v8f xi = __builtin_shuffle(lo, hi, odd);
+            const v8f pr = ar * vbr - ai * vbi;
+            const v8f pi = ar * vbi + ai * vbr;
+            sr += xr * pr - xi * pi;
+            si += xr * pi + xi * pr;
+        }
+        for (int lane = 0; lane < 8; ++lane) {
+            tr += sr[lane];
+            ti += si[lane];
+        }
+    }
+    if (full * 64 < n) {
+        const float ar = a[2 * full], ai = a[2 * full + 1];
+        for (std::uint32_t k = full * 64; k < n; ++k) {
+            const std::uint32_t b = k - full * 64;
+            const float pr = ar * br[b] - ai * bi[b];
+            const float pi = ar * bi[b] + ai * br[b];
+            tr += x[k].real() * pr - x[k].imag() * pi;
+            ti += x[k].real() * pi + x[k].imag() * pr;
+        }
+    }
+    return { tr, ti };
+}
+
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+__attribute__((target_clones("avx2", "default")))
+#endif
+void add_tones(std::complex<float>* out,
+               std::uint32_t len,
+               const std::complex<double>* amp,
+               const double* cyc,
+               std::uint32_t paths)
+{
+    if (len == 0 || paths == 0)
+        return;
+    // In-block tables B_p[b] = exp(j 2 pi f_p b), b < 64, as separate re/im rows, and the
+    // block steps exp(j 2 pi f_p 64), all from recurrences in double.
+    alignas(32) float bre[MAX_PATHS][BLOCK];
+    alignas(32) float bim[MAX_PATHS][BLOCK];
+    double ar[MAX_PATHS], ai[MAX_PATHS], sr[MAX_PATHS], si[MAX_PATHS];
+    const std::uint32_t np = paths < MAX_PATHS ? paths : MAX_PATHS;
+    for (std::uint32_t p = 0; p < np; ++p) {
+        const double w = 2.0 * M_PI * cyc[p];
+        const double cr = std::cos(w), ci = std::sin(w);
+        double pr = 1.0, pi = 0.0;
+        for (std::uint32_t b = 0; b < BLOCK; ++b) {
+            bre[p][b] = static_cast<float>(pr);
+            bim[p][b] = static_cast<float>(pi);
+            const double t = pr * cr - pi * ci;
+            pi = pr * ci + pi * cr;
+            pr = t;
+        }
+        sr[p] = std::cos(w * BLOCK);
+        si[p] = std::sin(w * BLOCK);
+        ar[p] = amp[p].real();
+        ai[p] = amp[p].imag();
+    }
+    float* o = reinterpret_cast<float*>(out);
+    const v8i lo_idx = { 0, 8, 1, 9, 2, 10, 3, 11 };
+    const v8i hi_idx = { 4, 12, 5, 13, 6, 14, 7, 15 };
+    for (std::uint32_t base = 0; base < len; base += BLOCK) {
+        v8f accr[BLOCK / 8], acci[BLOCK / 8];
+        for (std::uint32_t j = 0; j < BLOCK / 8; ++j) {
+            accr[j] = v8f{ 0, 0, 0, 0, 0, 0, 0, 0 };
+            acci[j] = accr[j];
+        }
+        for (std::uint32_t p = 0; p < np; ++p) {
+            const float cr = static_cast<float>(ar[p]), ci = static_cast<float>(ai[p]);
+            for (std::uint32_t j = 0; j < BLOCK / 8; ++j) {
+                v8f br, bi;
+                std::memcpy(&br, &bre[p][8 * j], sizeof(br));
+                std::memcpy(&bi, &bim[p][8 * j], sizeof(bi));
+                accr[j] += cr * br - ci * bi;
+                acci[j] += cr * bi + ci * br;
+            }
+            const double t = ar[p] * sr[p] - ai[p] * si[p];
+            ai[p] = ar[p] * si[p] + ai[p] * sr[p];
+            ar[p] = t;
+        }
+        const std::uint32_t n = len - base < BLOCK ? len - base : BLOCK;
+        if (n == BLOCK) {
+            for (std::uint32_t j = 0; j < BLOCK / 8; ++j) {
+                v8f a, b;
+                std::memcpy(&a, o + 2 * (base + 8 * j), sizeof(a));
+                std::memcpy(&b, o + 2 * (base + 8 * j) + 8, sizeof(b));
+                a += __builtin_shuffle(accr[j], acci[j], lo_idx);
+                b += __builtin_shuffle(accr[j], acci[j], hi_idx);
+                std::memcpy(o + 2 * (base + 8 * j), &a, sizeof(a));
+                std::memcpy(o + 2 * (base + 8 * j) + 8, &b, sizeof(b));
+            }
+        } else {
+            for (std::uint32_t k = 0; k < n; ++k) {
+                o[2 * (base + k)] += accr[k / 8][k % 8];
+                o[2 * (base + k) + 1] += acci[k / 8][k % 8];
+            }
+        }
+    }
+}
+
+namespace {
+// Natural log for x in (0, 1], vectorised: x = m 2^e with m in [sqrt(1/2), sqrt(2)),
+// ln m = 2 atanh(t), t = (m - 1) / (m + 1), |t| <= 0.172 (error < 1e-9 before rounding).
+__attribute__((always_inline)) inline v8f vlog(v8f x)
+{
+    v8i bits;
+    std::memcpy(&bits, &x, sizeof(bits));
+    v8i e = ((bits >> 23) & 0xff) - 127;
+    v8i mb = (bits & 0x007fffff) | 0x3f800000; // m in [1, 2)
+    v8f m;
+    std::memcpy(&m, &mb, sizeof(m));
+    const v8i big = m > 1.41421356f;
+    m = big ? m * 0.5f : m;
+    e = big ? e + 1 : e;
+    const v8f t = (m - 1.0f) / (m + 1.0f);
+    const v8f t2 = t * t;
+    const v8f poly =
+        2.0f * t *
+        (1.0f + t2 * (1.0f / 3 + t2 * (1.0f / 5 + t2 * (1.0f / 7 + t2 * (1.0f / 9)))));
+    return __builtin_convertvector(e, v8f) * 0.69314718056f + poly;
+}
+
+struct lanes {
+    v8u s0, s1, s2, s3;
+    // xoshiro128+ on 8 independent lanes.
+    __attribute__((always_inline)) v8u next()
+    {
+        const v8u r = s0 + s3;
+        const v8u t = s1 << 9;
+        s2 ^= s0;
+        s3 ^= s1;
+        s1 ^= s2;
+        s0 ^= s3;
+        s2 ^= t;
+        s3 = (s3 << 11) | (s3 >> 21);
+        return r;
+    }
+};
+} // namespace
+
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+__attribute__((target_clones("avx2", "default")))
+#endif
+void add_gaussian_noise(std::complex<float>* out,
+                        std::uint32_t len,
+                        float sigma,
+                        std::uint64_t key)
+{
+    lanes g;
+    std::uint64_t x = key;
+    for (int i = 0; i < 8; ++i) {
+        const std::uint64_t a = splitmix(x), b = splitmix(x);
+        g.s0[i] = static_cast<unsigned>(a);
+        g.s1[i] = static_cast<unsigned>(a >> 32);
+        g.s2[i] = static_cast<unsigned>(b);
+        g.s3[i] = static_cast<unsigned>(b >> 32) | 1u; // never all zero
+    }
+    float* o = reinterpret_cast<float*>(out);
+    const v8i lo_idx = { 0, 8, 1, 9, 2, 10, 3, 11 };
+    const v8i hi_idx = { 4, 12, 5, 13, 6, 14, 7, 15 };
+    const float pi4 = 0.78539816340f;
+    for (std::uint32_t base = 0; base < len; base += 8) {
+        const v8u r1 = g.next(), r2 = g.next();
+        // u1 in (0, 1]: 24 bits plus half a step; psi in [-pi/4, pi/4); quadrant from 2
+        // bits.
+        const v8f u1 = __builtin_convertvector((v8i)(r1 >> 8), v8f) * 5.9604645e-08f +
+                       2.9802322e-08f;
+        const v8f psi =
+            (__builtin_convertvector((v8i)(r2 >> 8), v8f) * 5.9604645e-08f - 0.5f) *
+            2.0f * pi4;
+        const v8u q = r2 & 3u;
+        v8f rad = -2.0f * vlog(u1);
+        for (int i = 0; i < 8; ++i) // vectorised (sqrtps) with -fno-math-errno
+            rad[i] = sigma * std::sqrt(rad[i]);
+        const v8f p2 = psi * psi;
+        const v8f s =
+            psi * (1.0f - p2 * (1.0f / 6 - p2 * (1.0f / 120 - p2 * (1.0f / 5040))));
+        const v8f c =
+            1.0f -
+            p2 * (0.5f - p2 * (1.0f / 24 - p2 * (1.0f / 720 - p2 * (1.0f / 40320))));
+        // Rotate (c, s) by q quarter turns: a uniform angle on the whole circle.
+        const v8i q1 = (v8i)(q == 1u), q2 = (v8i)(q == 2u), q3 = (v8i)(q == 3u);
+        v8f cr = q1 ? -s : (q2 ? -c : (q3 ? s : c));
+        v8f sr = q1 ? c : (q2 ? -s : (q3 ? -c : s));
+        const v8f re = rad * cr, im = rad * sr;
+        const std::uint32_t n = len - base < 8 ? len - base : 8;
+        if (n == 8) {
+            v8f a, b;
+            std::memcpy(&a, o + 2 * base, sizeof(a));
+            std::memcpy(&b, o + 2 * base + 8, sizeof(b));
+            a += __builtin_shuffle(re, im, lo_idx);
+            b += __builtin_shuffle(re, im, hi_idx);
+            std::memcpy(o + 2 * base, &a, sizeof(a));
+            std::memcpy(o + 2 * base + 8, &b, sizeof(b));
+        } else {
+            for (std::uint32_t k = 0; k < n; ++k) {
+                o[2 * (base + k)] += re[k];
+                o[2 * (base + k) + 1] += im[k];
+            }
+        }
+    }
+}
+
+} // namespace detail
+} // namespace rfseek
+} // namespace gr

@@ -1,0 +1,68 @@
+/* -*- c++ -*- */
+/*
+ * Copyright 2026 gr-rfseek authors.
+ * SPDX-License-Identifier: GPL-3.0-or-later
+ *
+ * kernels: the hot loops of the core (spectral peak search, demodulating dot product,
+ * sum of tones, Gaussian noise). Written with GCC vector extensions and compiled for AVX2
+ * and for the baseline, picked at run time (target_clones), so a distribution build runs
+ * everywhere and still uses AVX2 where it exists.
+ */
+
+#ifndef INCLUDED_RFSEEK_KERNELS_H
+#define INCLUDED_RFSEEK_KERNELS_H
+
+#include <complex>
+#include <cstdint>
+
+namespace gr {
+namespace rfseek {
+namespace detail {
+
+struct peak {
+    std::uint32_t index;
+    float value;  //!< |X_index|^2
+    double total; //!< sum of |X_k|^2
+};
+
+//! First index of the maximum of |x[k]|^2 over k < n (n >= 1), and the total power.
+peak peak_search(const std::complex<float>* x, std::uint32_t n);
+
+/*!
+ * sum_k x[k] A_{k / 64} B_{k % 64}: a demodulating dot product whose phasor is the
+ * product of a block term a[] (interleaved re, im; ceil(n / 64) entries) and an in-block
+ * term given as separate real and imaginary tables br[64], bi[64].
+ */
+std::complex<double> demod_dot(const std::complex<float>* x,
+                               std::uint32_t n,
+                               const float* a,
+                               const float* br,
+                               const float* bi);
+
+/*!
+ * out[n] += sum_p amp[p] exp(j 2 pi cyc[p] n), n < len: a sum of tones (cycles per
+ * sample), each phasor the product of a per-64-sample block term and an in-block term
+ * built by recurrences in double, so the phase error stays at float rounding at any
+ * length.
+ */
+void add_tones(std::complex<float>* out,
+               std::uint32_t len,
+               const std::complex<double>* amp,
+               const double* cyc,
+               std::uint32_t paths);
+
+/*!
+ * out[n] += sigma (g1 + j g2), n < len, with g1, g2 independent standard normals from a
+ * generator seeded by key (Box-Muller on xoshiro128+ streams, 8 lanes). The same key
+ * gives the same noise on every run of the same build.
+ */
+void add_gaussian_noise(std::complex<float>* out,
+                        std::uint32_t len,
+                        float sigma,
+                        std::uint64_t key);
+
+} // namespace detail
+} // namespace rfseek
+} // namespace gr
+
+#endif /* INCLUDED_RFSEEK_KERNELS_H */

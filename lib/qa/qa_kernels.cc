@@ -1,0 +1,135 @@
+/*
+ * Copyright 2026 gr-rfseek authors.
+ * SPDX-License-Identifier: GPL-3.0-or-later
+ *
+ * The vectorised kernels against plain loops: argmax of |X|^2 (first index on ties) with
+ * Parseval's total, and the table-phasor demodulating dot product.
+ */
+
+#include "kernels.h"
+#include <gr-rfseek/rng.h>
+#include <gtest/gtest.h>
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+using namespace gr::rfseek;
+
+TEST(peak_search, matches_a_plain_loop)
+{
+    rng g(21);
+    for (std::uint32_t n : { 1u, 7u, 8u, 9u, 64u, 1000u, 4096u }) {
+        for (int trial = 0; trial < 50; ++trial) {
+            std::vector<std::complex<float>> x(n);
+            for (auto& v : x)
+                v = { static_cast<float>(g.normal()), static_cast<float>(g.normal()) };
+            if (trial % 5 == 0 && n > 3) // exact ties: the first index wins
+                x[n - 1] = x[n / 2] = x[1] = { 9.0f, 9.0f };
+            std::uint32_t best = 0;
+            double total = 0.0;
+            for (std::uint32_t k = 0; k < n; ++k) {
+                total += std::norm(x[k]);
+                if (std::norm(x[k]) > std::norm(x[best]))
+                    best = k;
+            }
+            const auto p = detail::peak_search(x.data(), n);
+            ASSERT_EQ(p.index, best) << "n " << n << " trial " << trial;
+            EXPECT_EQ(p.value, std::norm(x[best]));
+            EXPECT_NEAR(p.total, total, 1e-5 * total);
+        }
+    }
+}
+
+TEST(peak_search, demod_dot_matches_direct_sum)
+{
+    rng g(22);
+    for (std::uint32_t n : { 3u, 64u, 100u, 1000u }) {
+        std::vector<std::complex<float>> x(n);
+        for (auto& v : x)
+            v = { static_cast<float>(g.normal()), static_cast<float>(g.normal()) };
+        const double w = 0.0123;
+        std::vector<float> a(2 * ((n + 63) / 64)), br(64), bi(64);
+        for (std::size_t i = 0; i < a.size() / 2; ++i) {
+            a[2 * i] = static_cast<float>(std::cos(-w * 64.0 * i));
+            a[2 * i + 1] = static_cast<float>(std::sin(-w * 64.0 * i));
+        }
+        for (int b = 0; b < 64; ++b) {
+            br[b] = static_cast<float>(std::cos(-w * b));
+            bi[b] = static_cast<float>(std::sin(-w * b));
+        }
+        std::complex<double> ref = 0.0;
+        for (std::uint32_t k = 0; k < n; ++k)
+            ref += std::complex<double>(x[k]) * std::polar(1.0, -w * k);
+        const auto got = detail::demod_dot(x.data(), n, a.data(), br.data(), bi.data());
+        EXPECT_NEAR(std::abs(got - ref), 0.0, 1e-4 * std::sqrt(double(n))) << "n " << n;
+    }
+}
+
+TEST(kernels, add_tones_matches_a_direct_sum)
+{
+    rng g(23);
+    for (std::uint32_t n : { 1u, 63u, 64u, 1000u, 5000u }) {
+        const std::uint32_t paths = 11;
+        std::vector<std::complex<double>> amp(paths);
+        std::vector<double> cyc(paths);
+        for (std::uint32_t p = 0; p < paths; ++p) {
+            amp[p] = std::polar(g.uniform(0.1, 1.0), g.uniform(-M_PI, M_PI));
+            cyc[p] = g.uniform(-0.02, 0.02); // up to +-2 kHz at 100 kHz
+        }
+        std::vector<std::complex<float>> x(n, { 0.25f, -0.5f });
+        detail::add_tones(x.data(), n, amp.data(), cyc.data(), paths);
+        double worst = 0.0;
+        for (std::uint32_t k = 0; k < n; ++k) {
+            std::complex<double> ref(0.25, -0.5);
+            for (std::uint32_t p = 0; p < paths; ++p)
+                ref += amp[p] * std::polar(1.0, 2.0 * M_PI * cyc[p] * k);
+            worst = std::max(worst, std::abs(std::complex<double>(x[k]) - ref));
+        }
+        EXPECT_LT(worst, 2e-5) << "n " << n; // float rounding, no phase walk
+    }
+}
+
+TEST(kernels, gaussian_noise_is_gaussian)
+{
+    const std::uint32_t n = 1u << 20;
+    const float sigma = 0.7f;
+    std::vector<std::complex<float>> x(n);
+    detail::add_gaussian_noise(x.data(), n, sigma, 12345);
+    double m1 = 0, m2r = 0, m2i = 0, m4 = 0, cross = 0;
+    std::uint32_t beyond3 = 0;
+    std::vector<double> v;
+    v.reserve(2 * n);
+    for (const auto& c : x) {
+        const double re = c.real() / sigma, im = c.imag() / sigma;
+        m1 += re + im;
+        m2r += re * re;
+        m2i += im * im;
+        m4 += re * re * re * re + im * im * im * im;
+        cross += re * im;
+        beyond3 += (std::abs(re) > 3.0) + (std::abs(im) > 3.0);
+        v.push_back(re);
+        v.push_back(im);
+    }
+    const double N = 2.0 * n;
+    EXPECT_NEAR(m1 / N, 0.0, 0.003);
+    EXPECT_NEAR(m2r / n, 1.0, 0.005);
+    EXPECT_NEAR(m2i / n, 1.0, 0.005);
+    EXPECT_NEAR(m4 / N, 3.0, 0.03);     // kurtosis of a normal
+    EXPECT_NEAR(cross / n, 0.0, 0.005); // real and imaginary parts independent
+    EXPECT_NEAR(beyond3 / N, 0.0026998, 0.0026998 * 0.08);
+    // Kolmogorov-Smirnov distance to the normal CDF.
+    std::sort(v.begin(), v.end());
+    double ks = 0.0;
+    for (std::size_t i = 0; i < v.size(); i += 97) {
+        const double cdf = 0.5 * std::erfc(-v[i] / std::sqrt(2.0));
+        ks = std::max(ks, std::abs(cdf - (i + 0.5) / v.size()));
+    }
+    EXPECT_LT(ks, 0.0015);
+    // The same key gives the same noise; another key other noise.
+    std::vector<std::complex<float>> a(100), b(100), c(100);
+    detail::add_gaussian_noise(a.data(), 100, 1.0f, 7);
+    detail::add_gaussian_noise(b.data(), 100, 1.0f, 7);
+    detail::add_gaussian_noise(c.data(), 100, 1.0f, 8);
+    EXPECT_EQ(a, b);
+    EXPECT_NE(a, c);
+}

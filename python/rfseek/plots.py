@@ -110,3 +110,112 @@ def frequency_power_figure(col, title=None, path=None):
     if path:
         fig.savefig(path, dpi=110)
     return fig
+
+
+# ---------------------------------------------------------------------------------------
+# Monte Carlo figures (rfseek-montecarlo's JSON)
+
+def _rows_by_strategy(result, sweep_value=None):
+    out = {}
+    for r in result["rows"]:
+        if sweep_value is not None and r.get("sweep_value") != sweep_value:
+            continue
+        out.setdefault(r["strategy"], []).append(r)
+    return out
+
+
+def distance_histograms(result, path=None, bins=40):
+    """Figs. 7-8: histogram of the distance flown per strategy (failed runs, which stop
+    at the flight cap, are drawn in grey)."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    by = _rows_by_strategy(result)
+    names = [s for s in result["strategies"] if s in by]
+    fig, axes = plt.subplots(len(names), 1, figsize=(7, 2.6 * len(names) + 0.6), squeeze=False)
+    shortest = next(iter(result["summary"].values()))["shortest_path_m"]
+    for ax, name in zip(axes[:, 0], names):
+        rows = by[name]
+        ok = np.array([r["distance_m"] for r in rows if r["success"]]) / 1000.0
+        bad = np.array([r["distance_m"] for r in rows if not r["success"]]) / 1000.0
+        s = result["summary"][name]
+        hi = max([1e-9] + list(ok) + list(bad))
+        edges = np.linspace(shortest / 1000.0 * 0.98, hi * 1.02, bins + 1)
+        ax.hist(ok, bins=edges, color="tab:blue", label="arrived")
+        if len(bad):
+            ax.hist(bad, bins=edges, color="tab:gray", label="flight cap (failed)")
+        ax.axvline(shortest / 1000.0, color="k", ls="--", lw=1, label="shortest path")
+        ax.axvline(s["mean_distance_m"] / 1000.0, color="tab:red", lw=1.5,
+                   label="mean %.2f km (%.2f x)" % (s["mean_distance_m"] / 1000.0,
+                                                   s["mean_ratio"]))
+        ax.set_title("%s: %d runs, success %.1f %%" % (name, s["runs"],
+                                                       100 * s["success_rate"]), fontsize=10)
+        ax.set_ylabel("runs")
+        ax.legend(fontsize=8)
+        ax.grid(alpha=0.3)
+    axes[-1, 0].set_xlabel("distance flown to reach d_v (km)")
+    fig.tight_layout()
+    if path:
+        fig.savefig(path, dpi=110)
+    return fig
+
+
+def comparison_chart(result, paper=None, path=None):
+    """Mean, median and p90 of the distance ratio per strategy, with the paper's means."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    names = [s for s in result["strategies"] if s in result["summary"]]
+    fig, ax = plt.subplots(figsize=(7, 4))
+    x = np.arange(len(names))
+    w = 0.25
+    for k, (key, label) in enumerate((("mean_ratio", "mean"), ("median_ratio", "median"),
+                                      ("p90_ratio", "90th percentile"))):
+        ax.bar(x + (k - 1) * w, [result["summary"][n][key] for n in names], w, label=label)
+    if paper:
+        for i, n in enumerate(names):
+            if n in paper:
+                ax.plot([i - 1.5 * w, i + 1.5 * w], [paper[n]] * 2, "k--", lw=1.5,
+                        label="paper (mean)" if i == 0 else None)
+    for i, n in enumerate(names):
+        ax.text(i, 0.05, "%.0f %% ok" % (100 * result["summary"][n]["success_rate"]),
+                ha="center", fontsize=8, color="white")
+    ax.set_xticks(x)
+    ax.set_xticklabels(names)
+    ax.set_ylabel("distance / shortest path")
+    ax.set_title("distance ratio, %d runs per strategy" % result["runs"], fontsize=10)
+    ax.legend(fontsize=8)
+    ax.grid(axis="y", alpha=0.3)
+    fig.tight_layout()
+    if path:
+        fig.savefig(path, dpi=110)
+    return fig
+
+
+def sweep_plot(result, path=None):
+    """Ratio (mean, p90) and success rate versus the swept parameter, per strategy."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    sw = result["sweep"]
+    xs = [float(v) for v in sw["values"]]
+    fig, (a1, a2) = plt.subplots(2, 1, figsize=(7, 6), sharex=True)
+    for name in result["strategies"]:
+        mean = [e[name]["mean_ratio"] for e in sw["summary"]]
+        p90 = [e[name]["p90_ratio"] for e in sw["summary"]]
+        ok = [100 * e[name]["success_rate"] for e in sw["summary"]]
+        line, = a1.plot(xs, mean, "o-", label="%s mean" % name)
+        a1.plot(xs, p90, "s--", color=line.get_color(), alpha=0.6, label="%s p90" % name)
+        a2.plot(xs, ok, "o-", color=line.get_color(), label=name)
+    a1.set_ylabel("distance / shortest path")
+    a1.grid(alpha=0.3)
+    a1.legend(fontsize=8)
+    a1.set_title("sweep of %s, %d runs per point" % (sw["key"], result["runs"]), fontsize=10)
+    a2.set_ylabel("success (%)")
+    a2.set_xlabel(sw["key"])
+    a2.grid(alpha=0.3)
+    a2.legend(fontsize=8)
+    fig.tight_layout()
+    if path:
+        fig.savefig(path, dpi=110)
+    return fig

@@ -1,0 +1,130 @@
+#!/usr/bin/python3
+#
+# Copyright 2026 gr-rfseek authors.
+# SPDX-License-Identifier: GPL-3.0-or-later
+#
+"""rfseek-montecarlo from the build tree: the JSON's schema, the summary recomputed from
+the rows, identical rows with 1 and 2 threads, the CSV, the plots, and bad options."""
+
+import csv
+import json
+import os
+import statistics
+import subprocess
+import sys
+import tempfile
+
+from gnuradio import gr_unittest
+
+BUILD = os.environ.get("RFSEEK_BUILD_DIR", os.path.join(os.path.dirname(__file__), "..", "..", "build"))
+SOURCE = os.environ.get("RFSEEK_SOURCE_DIR", os.path.join(os.path.dirname(__file__), "..", ".."))
+MC = os.path.join(BUILD, "apps", "rfseek-montecarlo")
+# A shorter flight than the reference (2 km) keeps the test quick; the code is the same.
+SHORT = ["--set", "initial_distance_m=2000", "--quiet"]
+
+
+def run_mc(tmp, name, *args):
+    out = os.path.join(tmp, name + ".json")
+    p = subprocess.run([MC, "--out", out] + list(args), capture_output=True, text=True)
+    return p, out
+
+
+def percentile(v, q):
+    v = sorted(v)
+    pos = q * (len(v) - 1)
+    i = int(pos)
+    f = pos - i
+    return v[i] * (1 - f) + v[i + 1] * f if i + 1 < len(v) else v[i]
+
+
+class qa_montecarlo(gr_unittest.TestCase):
+
+    def setUp(self):
+        self.tmp = tempfile.mkdtemp(prefix="rfseek_mc_")
+
+    def test_schema_and_summary_match_rows(self):
+        p, out = run_mc(self.tmp, "mc", "--runs", "20", "--seed", "5",
+                        "--strategy", "paper,paper_no_circle", "--threads", "2", *SHORT)
+        self.assertEqual(p.returncode, 0, p.stderr)
+        res = json.load(open(out))
+        for key in ("scenario", "rows", "summary", "strategies", "runs", "seed", "timing"):
+            self.assertIn(key, res)
+        self.assertEqual(res["scenario"]["initial_distance_m"], 2000)
+        self.assertEqual(len(res["rows"]), 40)
+        for r in res["rows"]:
+            for key in ("seed", "strategy", "distance_m", "ratio", "time_s", "success",
+                        "stage1_heading_error_deg"):
+                self.assertIn(key, r)
+        # Both strategies on the same seeds 5..24.
+        for s in ("paper", "paper_no_circle"):
+            rows = [r for r in res["rows"] if r["strategy"] == s]
+            self.assertEqual(sorted(r["seed"] for r in rows), list(range(5, 25)))
+            summ = res["summary"][s]
+            d = [r["distance_m"] for r in rows]
+            ratio = [r["ratio"] for r in rows]
+            shortest = 2000 - 200
+            self.assertEqual(summ["runs"], 20)
+            self.assertAlmostEqual(summ["success_rate"], sum(r["success"] for r in rows) / 20)
+            self.assertAlmostEqual(summ["mean_distance_m"], statistics.mean(d), places=4)
+            self.assertAlmostEqual(summ["median_distance_m"], statistics.median(d), places=4)
+            self.assertAlmostEqual(summ["p90_distance_m"], percentile(d, 0.9), places=4)
+            self.assertAlmostEqual(summ["mean_ratio"], statistics.mean(ratio), places=6)
+            self.assertAlmostEqual(summ["median_ratio"], statistics.median(ratio), places=6)
+            self.assertAlmostEqual(summ["p90_ratio"], percentile(ratio, 0.9), places=6)
+            self.assertEqual(summ["shortest_path_m"], shortest)
+            for r in rows:
+                self.assertAlmostEqual(r["ratio"], r["distance_m"] / shortest, places=6)
+                self.assertAlmostEqual(r["time_s"], r["distance_m"] / 10.0, places=6)
+        # The CSV holds the same rows.
+        rows_csv = list(csv.DictReader(open(out[:-5] + ".csv")))
+        self.assertEqual(len(rows_csv), 40)
+        self.assertAlmostEqual(float(rows_csv[3]["distance_m"]), res["rows"][3]["distance_m"],
+                               places=3)
+        # And the figures can be drawn from it.
+        plot = subprocess.run([sys.executable, os.path.join(SOURCE, "apps",
+                                                            "rfseek-plot-montecarlo"), out],
+                              capture_output=True, text=True)
+        self.assertEqual(plot.returncode, 0, plot.stderr)
+        self.assertTrue(os.path.getsize(os.path.join(self.tmp, "mc_histograms.png")) > 1000)
+        self.assertTrue(os.path.getsize(os.path.join(self.tmp, "mc_comparison.png")) > 1000)
+
+    def test_rows_do_not_depend_on_thread_count(self):
+        args = ["--runs", "6", "--seed", "11", "--strategy", "paper,rss_baseline",
+                "--set", "flight_cap_m=4000"] + SHORT
+        p1, o1 = run_mc(self.tmp, "t1", "--threads", "1", *args)
+        p2, o2 = run_mc(self.tmp, "t2", "--threads", "2", *args)
+        self.assertEqual(p1.returncode, 0, p1.stderr)
+        self.assertEqual(p2.returncode, 0, p2.stderr)
+        r1, r2 = json.load(open(o1)), json.load(open(o2))
+        self.assertEqual(r1["rows"], r2["rows"])
+        self.assertEqual(r1["summary"], r2["summary"])
+
+    def test_sweep(self):
+        p, out = run_mc(self.tmp, "sw", "--runs", "3", "--strategy", "paper_no_circle",
+                        "--sweep", "snr_db=-5,5", *SHORT)
+        self.assertEqual(p.returncode, 0, p.stderr)
+        res = json.load(open(out))
+        self.assertEqual(res["sweep"]["key"], "snr_db")
+        self.assertEqual([e["value"] for e in res["sweep"]["summary"]], ["-5", "5"])
+        self.assertEqual(len(res["rows"]), 6)
+        plot = subprocess.run([sys.executable, os.path.join(SOURCE, "apps",
+                                                            "rfseek-plot-montecarlo"), out],
+                              capture_output=True, text=True)
+        self.assertEqual(plot.returncode, 0, plot.stderr)
+
+    def test_bad_options_exit_2_with_a_message(self):
+        for args, word in ((["--runs", "0"], "--runs"),
+                           (["--strategy", "gradient"], "gradient"),
+                           (["--set", "snr=3"], "snr"),
+                           (["--set", "snr_db=loud"], "snr_db"),
+                           (["--set", "window_len=2"], "window_len"),
+                           (["--set", "delta_deg=95"], "delta_rad"),
+                           (["--bogus"], "--bogus")):
+            p, _ = run_mc(self.tmp, "bad", *args)
+            self.assertEqual(p.returncode, 2, args)
+            self.assertIn(word, p.stderr)
+            self.assertNotIn("Traceback", p.stderr)
+
+
+if __name__ == "__main__":
+    gr_unittest.run(qa_montecarlo)

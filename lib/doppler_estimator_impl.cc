@@ -17,14 +17,16 @@ namespace gr {
 namespace rfseek {
 
 namespace {
-bool parse_alignment(const std::string& a)
+int parse_alignment(const std::string& a)
 {
     if (a == "tag")
-        return false;
+        return 0;
     if (a == "periodic")
-        return true;
+        return 1;
+    if (a == "energy")
+        return 2;
     throw std::invalid_argument("doppler_estimator: alignment = '" + a +
-                                "': must be 'tag' or 'periodic'");
+                                "': must be 'tag', 'periodic' or 'energy'");
 }
 
 std::uint64_t check_period(bool periodic, std::uint64_t period, int window_len)
@@ -48,7 +50,8 @@ doppler_estimator::sptr doppler_estimator::make(double samp_rate,
                                                 std::uint64_t period,
                                                 std::uint64_t offset,
                                                 double min_freq,
-                                                double max_freq)
+                                                double max_freq,
+                                                double threshold_db)
 {
     return gnuradio::make_block_sptr<doppler_estimator_impl>(samp_rate,
                                                              window_len,
@@ -60,7 +63,8 @@ doppler_estimator::sptr doppler_estimator::make(double samp_rate,
                                                              period,
                                                              offset,
                                                              min_freq,
-                                                             max_freq);
+                                                             max_freq,
+                                                             threshold_db);
 }
 
 doppler_estimator_impl::doppler_estimator_impl(double samp_rate,
@@ -73,13 +77,16 @@ doppler_estimator_impl::doppler_estimator_impl(double samp_rate,
                                                std::uint64_t period,
                                                std::uint64_t offset,
                                                double min_freq,
-                                               double max_freq)
+                                               double max_freq,
+                                               double threshold_db)
     : gr::sync_block("doppler_estimator",
                      gr::io_signature::make(1, 1, sizeof(gr_complex)),
                      gr::io_signature::make(0, 0, 0)),
       d_est(samp_rate, window_len, fft_len, window, interpolator, min_freq, max_freq),
       d_samp_rate(samp_rate),
-      d_periodic(parse_alignment(alignment)),
+      d_periodic(parse_alignment(alignment) == 1),
+      d_energy(parse_alignment(alignment) == 2),
+      d_detector(threshold_db, static_cast<std::uint64_t>(std::max(window_len, 1)) + 1),
       d_tag_key(pmt::mp(tag_key)),
       d_period(check_period(d_periodic, period, window_len)),
       d_offset(offset),
@@ -90,7 +97,7 @@ doppler_estimator_impl::doppler_estimator_impl(double samp_rate,
       d_key_rx_time(pmt::mp("rx_time")),
       d_key_rx_rate(pmt::mp("rx_rate"))
 {
-    if (!d_periodic && tag_key.empty())
+    if (!d_periodic && !d_energy && tag_key.empty())
         throw std::invalid_argument("doppler_estimator: tag_key must not be empty for "
                                     "tag alignment");
     message_port_register_out(d_port_meas);
@@ -156,7 +163,7 @@ void doppler_estimator_impl::feed(const gr_complex* in,
     while (count > 0) {
         if (!d_collecting) {
             if (!d_periodic)
-                return; // between tagged windows: nothing to measure
+                return; // between tagged or detected windows: nothing to measure
             std::uint64_t next = d_offset;
             if (abs > d_offset)
                 next = d_offset + ((abs - d_offset + d_period - 1) / d_period) * d_period;
@@ -189,6 +196,30 @@ int doppler_estimator_impl::work(int noutput_items,
 
     std::vector<gr::tag_t> tags;
     get_tags_in_range(tags, 0, base, end);
+    if (d_energy) {
+        // Burst starts found from the power; a start may lie in the samples kept from the
+        // previous call (at most the detector's averaging length back).
+        std::vector<std::uint64_t> starts;
+        d_detector.push(in, noutput_items, base, starts);
+        for (const auto s : starts) {
+            if (s < base) {
+                if (d_collecting)
+                    finish_window(true);
+                start_window(s, pmt::PMT_NIL);
+                const std::uint64_t from = d_hist_end - d_hist.size();
+                for (std::uint64_t k = std::max(s, from);
+                     k < base && d_fill < d_buf.size();
+                     ++k)
+                    d_buf[d_fill++] = d_hist[k - from];
+            } else {
+                gr::tag_t t;
+                t.offset = s;
+                t.key = d_tag_key;
+                t.value = pmt::PMT_NIL;
+                tags.push_back(t);
+            }
+        }
+    }
     // Clock tags before window tags at the same offset.
     std::stable_sort(
         tags.begin(), tags.end(), [this](const gr::tag_t& a, const gr::tag_t& b) {
@@ -201,7 +232,8 @@ int doppler_estimator_impl::work(int noutput_items,
     for (const auto& t : tags) {
         const bool is_time = pmt::eqv(t.key, d_key_rx_time);
         const bool is_rate = pmt::eqv(t.key, d_key_rx_rate);
-        const bool is_window = !d_periodic && pmt::eqv(t.key, d_tag_key);
+        const bool is_window = !d_periodic && pmt::eqv(t.key, d_tag_key) &&
+                               (!d_energy || pmt::is_null(t.value));
         if (!is_time && !is_rate && !is_window)
             continue;
         feed(in + (pos - base), pos, t.offset - pos);
@@ -232,6 +264,19 @@ int doppler_estimator_impl::work(int noutput_items,
         }
     }
     feed(in + (pos - base), pos, end - pos);
+    if (d_energy) {
+        // Keep the last samples for a burst whose start is found later in them.
+        const std::size_t keep = 1024;
+        const std::size_t n = static_cast<std::size_t>(noutput_items);
+        if (n >= keep) {
+            d_hist.assign(in + n - keep, in + n);
+        } else {
+            d_hist.insert(d_hist.end(), in, in + n);
+            if (d_hist.size() > keep)
+                d_hist.erase(d_hist.begin(), d_hist.end() - keep);
+        }
+        d_hist_end = end;
+    }
     return noutput_items;
 }
 
@@ -287,6 +332,18 @@ void doppler_estimator_impl::set_interpolator(const std::string& interpolator)
 {
     gr::thread::scoped_lock lock(d_setlock);
     d_est.set_interpolator(interpolator);
+}
+
+void doppler_estimator_impl::set_threshold_db(double threshold_db)
+{
+    gr::thread::scoped_lock lock(d_setlock);
+    d_detector.set_threshold_db(threshold_db);
+}
+
+double doppler_estimator_impl::threshold_db() const
+{
+    gr::thread::scoped_lock lock(setlock());
+    return d_detector.threshold_db();
 }
 
 void doppler_estimator_impl::set_band(double min_freq, double max_freq)

@@ -7,6 +7,7 @@
 #ifndef INCLUDED_RFSEEK_DOPPLER_ESTIMATOR_IMPL_H
 #define INCLUDED_RFSEEK_DOPPLER_ESTIMATOR_IMPL_H
 
+#include <gr-rfseek/burst_detector.h>
 #include <gr-rfseek/doppler_estimator.h>
 #include <gr-rfseek/tone_estimator.h>
 #include <vector>
@@ -27,7 +28,8 @@ public:
                            std::uint64_t period,
                            std::uint64_t offset,
                            double min_freq,
-                           double max_freq);
+                           double max_freq,
+                           double threshold_db);
 
     int work(int noutput_items,
              gr_vector_const_void_star& input_items,
@@ -35,7 +37,10 @@ public:
 
     std::string window() const override;
     std::string interpolator() const override;
-    std::string alignment() const override { return d_periodic ? "periodic" : "tag"; }
+    std::string alignment() const override
+    {
+        return d_energy ? "energy" : (d_periodic ? "periodic" : "tag");
+    }
     double min_freq() const override;
     double max_freq() const override;
     std::uint64_t window_count() const override;
@@ -45,6 +50,8 @@ public:
     void set_window(const std::string& window) override;
     void set_interpolator(const std::string& interpolator) override;
     void set_band(double min_freq, double max_freq) override;
+    void set_threshold_db(double threshold_db) override;
+    double threshold_db() const override;
 
 private:
     gr::thread::mutex& setlock() const
@@ -59,6 +66,10 @@ private:
     tone_estimator d_est;
     const double d_samp_rate;
     const bool d_periodic;
+    const bool d_energy;
+    burst_detector d_detector;
+    std::vector<gr_complex> d_hist; // the last samples before the current chunk
+    std::uint64_t d_hist_end = 0;   // absolute index one past d_hist's last sample
     const pmt::pmt_t d_tag_key;
     const std::uint64_t d_period;
     const std::uint64_t d_offset;

@@ -24,8 +24,10 @@ namespace rfseek {
  *
  * \details
  * Input: complex64. Windows of window_len samples are taken either on each tag whose key
- * is tag_key (alignment "tag": the beacons of channel_source or any tagged burst) or
- * every period samples starting at offset (alignment "periodic": a continuous beacon).
+ * is tag_key (alignment "tag": the beacons of channel_source or any tagged burst), every
+ * period samples starting at offset (alignment "periodic": a continuous beacon), or at
+ * each burst found by its power over the noise floor (alignment "energy": a pulsed beacon
+ * received live; see burst_detector).
  * Each window gives one message on "meas": {slot, time, offset, freq_hz, snr_db,
  * power_db, noise_power_db, valid} plus every field of the aligning tag's dict (heading,
  * ...). time is the sample clock: from the latest rx_time/rx_rate tags when present, else
@@ -43,11 +45,13 @@ public:
      * \param fft_len N_FFT (>= 4)
      * \param window "rectangular", "hann" or "blackman_harris"
      * \param interpolator "parabolic" (paper eq. 3), "newton" (ML) or "log_parabolic"
-     * \param alignment "tag" or "periodic"
+     * \param alignment "tag", "periodic" or "energy"
      * \param tag_key key of the aligning tags (alignment "tag")
      * \param period samples between window starts (alignment "periodic", >= window_len)
      * \param offset first window start (alignment "periodic", >= 0)
      * \param min_freq, max_freq search band in Hz; equal values search the whole band
+     * \param threshold_db burst detection level over the noise floor (alignment
+     *        "energy", > 0 dB)
      */
     static sptr make(double samp_rate,
                      int window_len,
@@ -59,7 +63,8 @@ public:
                      std::uint64_t period = 0,
                      std::uint64_t offset = 0,
                      double min_freq = 0.0,
-                     double max_freq = 0.0);
+                     double max_freq = 0.0,
+                     double threshold_db = 2.0);
 
     virtual std::string window() const = 0;
     virtual std::string interpolator() const = 0;
@@ -74,6 +79,8 @@ public:
     virtual void set_window(const std::string& window) = 0;
     virtual void set_interpolator(const std::string& interpolator) = 0;
     virtual void set_band(double min_freq, double max_freq) = 0;
+    virtual void set_threshold_db(double threshold_db) = 0;
+    virtual double threshold_db() const = 0;
 };
 
 } // namespace rfseek

@@ -111,6 +111,38 @@ class qa_doppler_estimator(gr_unittest.TestCase):
             self.assertAlmostEqual(m["heading"], s["measured_heading"])
             self.assertAlmostEqual(m["freq_hz"], s["doppler_hz"] + s["cfo_hz"], delta=0.01)
 
+    def test_energy_gating_on_a_continuous_stream(self):
+        # A pulsed beacon received continuously: windows start at the detected bursts.
+        for snr, expect_windows in ((0.0, True), (-100.0, False)):
+            sc = rfseek.scenario(initial_distance_m=230.0, num_scatterers=0, snr_db=snr,
+                                 cfo_hz=150.0, cfo_drift_hz_per_s=0.0,
+                                 cfo_walk_hz_per_sqrt_s=0.0, start_angle_rad=0.0,
+                                 start_heading_rad=math.pi, seed=6)
+            tb = gr.top_block()
+            src = rfseek.channel_source(sc, mode="continuous", lockstep=False)
+            est = rfseek.doppler_estimator(sc.samp_rate_hz, sc.window_len, sc.fft_len,
+                                           alignment="energy", interpolator="newton")
+            meas, states = blocks.message_debug(), blocks.message_debug()
+            tb.connect(src, est)
+            tb.msg_connect(est, "meas", meas, "store")
+            tb.msg_connect(src, "state", states, "store")
+            tb.run()
+            m = [pmt.to_python(meas.get_message(i)) for i in range(meas.num_messages())]
+            if not expect_windows:
+                self.assertEqual(m, [])
+                continue
+            slots = states.num_messages() - 1
+            self.assertGreaterEqual(len(m), 0.97 * slots)
+            self.assertLessEqual(len(m), slots)
+            for x in m:
+                k = round(x["offset"] / sc.slot_samples)
+                self.assertLessEqual(abs(x["offset"] - k * sc.slot_samples), 50)
+                self.assertTrue(x["valid"])
+                # 0 dB per sample: the Cramer-Rao bound is 1.2 Hz; 5 sigma.
+                self.assertAlmostEqual(x["freq_hz"], 150.0 + sc.max_doppler_hz, delta=6.2)
+        with self.assertRaisesRegex(ValueError, "threshold_db"):
+            rfseek.doppler_estimator(FS, N, NFFT, alignment="energy", threshold_db=0.0)
+
     def test_degenerate_windows_are_invalid_without_nan(self):
         x = np.concatenate([np.zeros(N), np.full(N, np.nan), burst(100.0, 600), burst(50.0)])
         tags = [tag(0, "rfseek_beacon", {"slot": 0}),
@@ -135,7 +167,7 @@ class qa_doppler_estimator(gr_unittest.TestCase):
             (dict(samp_rate=FS, window_len=N, fft_len=NFFT, window="kaiser"), "window"),
             (dict(samp_rate=FS, window_len=N, fft_len=NFFT, interpolator="spline"),
              "interpolator"),
-            (dict(samp_rate=FS, window_len=N, fft_len=NFFT, alignment="energy"),
+            (dict(samp_rate=FS, window_len=N, fft_len=NFFT, alignment="pulse"),
              "alignment"),
             (dict(samp_rate=FS, window_len=N, fft_len=NFFT, alignment="periodic",
                   period=10), "period"),

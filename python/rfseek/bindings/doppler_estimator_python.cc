@@ -4,7 +4,7 @@
  */
 
 /* BINDTOOL_HEADER_FILE(doppler_estimator.h) */
-/* BINDTOOL_HEADER_FILE_HASH(a7a15c6f0d2acd46011c500765992595) */
+/* BINDTOOL_HEADER_FILE_HASH(6b3ef3305c8b70d0c5ff4032dfd9f521) */
 
 #include <gr-rfseek/doppler_estimator.h>
 #include <pybind11/pybind11.h>
@@ -34,7 +34,8 @@ void bind_doppler_estimator(py::module& m)
              py::arg("period") = 0,
              py::arg("offset") = 0,
              py::arg("min_freq") = 0.0,
-             py::arg("max_freq") = 0.0)
+             py::arg("max_freq") = 0.0,
+             py::arg("threshold_db") = 2.0)
         .def("window", &doppler_estimator::window)
         .def("interpolator", &doppler_estimator::interpolator)
         .def("alignment", &doppler_estimator::alignment)
@@ -47,6 +48,10 @@ void bind_doppler_estimator(py::module& m)
         .def("set_interpolator",
              &doppler_estimator::set_interpolator,
              py::arg("interpolator"))
+        .def("threshold_db", &doppler_estimator::threshold_db)
+        .def("set_threshold_db",
+             &doppler_estimator::set_threshold_db,
+             py::arg("threshold_db"))
         .def("set_band",
              &doppler_estimator::set_band,
              py::arg("min_freq"),

@@ -13,6 +13,7 @@ void bind_rng(py::module& m);
 void bind_scenario(py::module& m);
 void bind_world(py::module& m);
 void bind_tone_estimator(py::module& m);
+void bind_burst_detector(py::module& m);
 void bind_channel_source(py::module& m);
 void bind_doppler_estimator(py::module& m);
 void bind_seeker(py::module& m);
@@ -28,6 +29,7 @@ PYBIND11_MODULE(rfseek_python, m)
     bind_scenario(m);
     bind_world(m);
     bind_tone_estimator(m);
+    bind_burst_detector(m);
     bind_channel_source(m);
     bind_doppler_estimator(m);
     bind_seeker(m);

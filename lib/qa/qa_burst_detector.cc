@@ -1,0 +1,85 @@
+/*
+ * Copyright 2026 gr-rfseek authors.
+ * SPDX-License-Identifier: GPL-3.0-or-later
+ *
+ * burst_detector: finds the simulated beacon bursts (continuous reception, one N-sample
+ * burst per slot) at the reference SNR, places their starts, and finds nothing in noise.
+ */
+
+#include <gr-rfseek/burst_detector.h>
+#include <gr-rfseek/world.h>
+#include <gtest/gtest.h>
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <stdexcept>
+#include <vector>
+
+using namespace gr::rfseek;
+
+namespace {
+// Continuous reception of `slots` slots; burst k starts at sample k * slot_samples.
+std::vector<std::complex<float>> receive(scenario sc, int slots)
+{
+    world w(sc);
+    std::vector<std::complex<float>> x;
+    for (int k = 0; k < slots && !w.finished(); ++k) {
+        const auto s = w.synthesize(sc.slot_samples());
+        x.insert(x.end(), s.begin(), s.end());
+        w.advance(w.heading_rad());
+    }
+    return x;
+}
+} // namespace
+
+TEST(burst_detector, finds_99_percent_of_bursts_at_the_reference_snr)
+{
+    scenario sc;
+    sc.num_scatterers = 0; // the burst at the reference mean SNR, 0 dB, without fades
+    sc.snr_db = 0.0;
+    sc.seed = 31;
+    const int slots = 400;
+    const auto x = receive(sc, slots);
+    burst_detector det(2.0, sc.window_len + 1);
+    std::vector<std::uint64_t> starts;
+    // Fed in uneven chunks, as a scheduler would.
+    std::size_t pos = 0, chunk = 777;
+    while (pos < x.size()) {
+        const std::size_t n = std::min(chunk, x.size() - pos);
+        det.push(x.data() + pos, n, pos, starts);
+        pos += n;
+        chunk = chunk * 7 % 4093 + 100;
+    }
+    int found = 0;
+    for (int k = 1; k < slots; ++k) { // the floor needs the first blocks
+        const std::int64_t truth = static_cast<std::int64_t>(k) * sc.slot_samples();
+        for (auto s : starts)
+            if (std::llabs(static_cast<std::int64_t>(s) - truth) <= 50) {
+                ++found;
+                break;
+            }
+    }
+    EXPECT_GE(found, 0.99 * (slots - 1));
+    EXPECT_LE(starts.size(), static_cast<std::size_t>(slots)); // no extra windows
+    EXPECT_NEAR(det.noise_floor() / 1e-7, 1.0, 0.15);
+}
+
+TEST(burst_detector, no_false_windows_in_noise_alone)
+{
+    scenario sc;
+    sc.snr_db = -100.0; // the beacon is off: noise only
+    sc.seed = 32;
+    const auto x = receive(sc, 400); // 2 million samples
+    burst_detector det(2.0, sc.window_len + 1);
+    std::vector<std::uint64_t> starts;
+    det.push(x.data(), x.size(), 0, starts);
+    EXPECT_EQ(starts.size(), 0u);
+}
+
+TEST(burst_detector, bad_parameters_throw)
+{
+    EXPECT_THROW(burst_detector(0.0), std::invalid_argument);
+    EXPECT_THROW(burst_detector(2.0, 0), std::invalid_argument);
+    EXPECT_THROW(burst_detector(2.0, 100, 4), std::invalid_argument);
+    EXPECT_THROW(burst_detector(2.0, 100, 256, 8), std::invalid_argument);
+}

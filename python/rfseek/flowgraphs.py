@@ -76,3 +76,21 @@ class closed_loop(gr.top_block):
         self.msg_connect(self.source, "state", self.collector, "state")
         self.msg_connect(self.estimator, "meas", self.collector, "meas")
         self.msg_connect(self.controller, "telemetry", self.collector, "telemetry")
+
+
+class state_to_nav(gr.basic_block):
+    """Turns channel_source's per-slot truth into the heading reports a vehicle would
+    send ({heading} = the measured heading), for recordings and demos of the nav path."""
+
+    def __init__(self):
+        gr.basic_block.__init__(self, name="rfseek_state_to_nav", in_sig=None, out_sig=None)
+        self.message_port_register_in(pmt.intern("state"))
+        self.message_port_register_out(pmt.intern("nav"))
+        self.set_msg_handler(pmt.intern("state"), self.on_state)
+
+    def on_state(self, msg):
+        try:
+            h = float(pmt.to_python(msg)["measured_heading"])
+        except (KeyError, TypeError, ValueError, AttributeError):
+            return
+        self.message_port_pub(pmt.intern("nav"), pmt.to_pmt({"heading": h}))

@@ -1,0 +1,57 @@
+#!/usr/bin/python3
+#
+# Copyright 2026 gr-rfseek authors.
+# SPDX-License-Identifier: GPL-3.0-or-later
+#
+"""rfseek-live without hardware: a clean "no device found" (status 3, no traceback) for
+the USRP and osmosdr sources, replay of the committed recording, a short simulated run,
+and argument errors."""
+
+import os
+import subprocess
+import sys
+
+from gnuradio import gr_unittest
+
+SOURCE = os.environ.get("RFSEEK_SOURCE_DIR", os.path.join(os.path.dirname(__file__), "..", ".."))
+LIVE = os.path.join(SOURCE, "apps", "rfseek-live")
+
+
+def live(*args):
+    return subprocess.run([sys.executable, LIVE] + list(args), capture_output=True,
+                          text=True, timeout=300)
+
+
+class qa_live(gr_unittest.TestCase):
+
+    def test_no_device_is_a_clean_error(self):
+        for source, name in (("uhd", "UHD"), ("osmosdr", "osmosdr")):
+            p = live("--source", source, "--duration", "1")
+            self.assertEqual(p.returncode, 3, p.stderr)
+            self.assertIn("no %s device found" % name, p.stderr)
+            self.assertNotIn("Traceback", p.stderr)
+
+    def test_replay_of_the_committed_recording(self):
+        p = live("--source", "file", "--file", os.path.join(SOURCE, "examples", "data",
+                                                            "sim_beacons"))
+        self.assertEqual(p.returncode, 0, p.stderr)
+        self.assertIn("60 measurements", p.stderr)
+
+    def test_simulated_source(self):
+        p = live("--source", "sim", "--fast", "--set", "initial_distance_m=205",
+                 "--set", "start_angle_rad=0", "--set", "start_heading_rad=3.14159",
+                 "--strategy", "paper_no_circle")
+        self.assertEqual(p.returncode, 0, p.stderr)
+        self.assertIn("arrived", p.stderr)
+
+    def test_bad_arguments(self):
+        self.assertEqual(live("--source", "file").returncode, 2)
+        self.assertEqual(live("--source", "radio").returncode, 2)
+        p = live("--source", "sim", "--fast", "--window-len", "2")
+        self.assertEqual(p.returncode, 2)
+        self.assertIn("window_len", p.stderr)
+        self.assertNotIn("Traceback", p.stderr)
+
+
+if __name__ == "__main__":
+    gr_unittest.run(qa_live)

@@ -61,17 +61,8 @@ struct settings {
 
 bool is_seeker_key(const std::string& k)
 {
-    static const char* keys[] = {
-        "delta_deg",       "delta_rad",          "m_slots",
-        "circle_radius_m", "moving_average_len", "outlier_threshold_hz",
-        "literal_eq4",     "relock_count",       "hold_after_missing",
-        "rss_run_slots",   "rss_good_ratio",     "rss_reverse_db",
-        "rss_min_runs"
-    };
-    for (const char* s : keys)
-        if (k == s)
-            return true;
-    return false;
+    const auto keys = seeker_config::keys();
+    return std::find(keys.begin(), keys.end(), k) != keys.end();
 }
 
 double num(const std::string& key, const std::string& v)
@@ -83,41 +74,16 @@ double num(const std::string& key, const std::string& v)
     return d;
 }
 
-void apply_seeker(seeker_config& c, const std::string& k, const std::string& v)
-{
-    if (k == "delta_deg")
-        c.delta_rad = num(k, v) * M_PI / 180.0;
-    else if (k == "delta_rad")
-        c.delta_rad = num(k, v);
-    else if (k == "m_slots")
-        c.m_slots = static_cast<int>(num(k, v));
-    else if (k == "circle_radius_m")
-        c.circle_radius_m = num(k, v);
-    else if (k == "moving_average_len")
-        c.moving_average_len = static_cast<int>(num(k, v));
-    else if (k == "outlier_threshold_hz")
-        c.outlier_threshold_hz = num(k, v);
-    else if (k == "literal_eq4")
-        c.literal_eq4 = (v == "true" || v == "1" || v == "True");
-    else if (k == "relock_count")
-        c.relock_count = static_cast<int>(num(k, v));
-    else if (k == "hold_after_missing")
-        c.hold_after_missing = static_cast<int>(num(k, v));
-    else if (k == "rss_run_slots")
-        c.rss_run_slots = static_cast<int>(num(k, v));
-    else if (k == "rss_good_ratio")
-        c.rss_good_ratio = num(k, v);
-    else if (k == "rss_reverse_db")
-        c.rss_reverse_db = num(k, v);
-    else if (k == "rss_min_runs")
-        c.rss_min_runs = static_cast<int>(num(k, v));
-}
-
 void apply(settings& s, const std::string& key, const std::string& value)
 {
-    if (is_seeker_key(key))
+    const auto sk = scenario::keys();
+    if (std::find(sk.begin(), sk.end(), key) != sk.end())
+        s.sc.set(key, value); // the scenario's fields feed the seeker via seeker_for()
+    else if (is_seeker_key(key)) {
+        seeker_config probe;
+        probe.set(key, value); // parse now, fail before the long run
         s.seeker_sets.emplace_back(key, value);
-    else if (key == "interpolator")
+    } else if (key == "interpolator")
         s.est.interpolator = value;
     else if (key == "window")
         s.est.window = value;
@@ -126,7 +92,10 @@ void apply(settings& s, const std::string& key, const std::string& value)
     else if (key == "max_freq_hz")
         s.est.max_freq_hz = num(key, value);
     else
-        s.sc.set(key, value); // throws for an unknown key
+        throw std::invalid_argument(
+            "unknown parameter '" + key +
+            "' (a scenario field, a seeker constant or an estimator "
+            "setting; see --help)");
 }
 
 std::string trim(std::string s)
@@ -361,7 +330,7 @@ int main(int argc, char** argv)
             for (const auto& st : strategies) {
                 seeker_config c = simulation::seeker_for(s.sc, st);
                 for (const auto& kv : s.seeker_sets)
-                    apply_seeker(c, kv.first, kv.second);
+                    c.set(kv.first, kv.second);
                 simulation check(s.sc, c, s.est);
             }
         }
@@ -415,7 +384,7 @@ int main(int argc, char** argv)
             s.sc.seed = seed + ri;
             seeker_config c = simulation::seeker_for(s.sc, strategies[si]);
             for (const auto& kv : s.seeker_sets)
-                apply_seeker(c, kv.first, kv.second);
+                c.set(kv.first, kv.second);
             const run_result res = simulation(s.sc, c, s.est).run(false);
             rows[j] = row{ strategies[si], s.sc.seed, sweep_values[vi], res.summary };
             slots += res.summary.slots;

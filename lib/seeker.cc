@@ -24,6 +24,7 @@
 #include <gr-rfseek/world.h>
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <stdexcept>
 
 namespace gr {
@@ -624,6 +625,94 @@ void seeker_config::validate() const
         bad("rss_min_runs", rss_min_runs, "in [2, 100000]");
     if (initial_heading_rad && !std::isfinite(*initial_heading_rad))
         bad("initial_heading_rad", *initial_heading_rad, "finite");
+}
+
+std::vector<std::string> seeker_config::keys()
+{
+    return { "strategy",
+             "speed_mps",
+             "carrier_hz",
+             "slot_period_s",
+             "delta_rad",
+             "delta_deg",
+             "m_slots",
+             "circle_radius_m",
+             "moving_average_len",
+             "outlier_threshold_hz",
+             "literal_eq4",
+             "relock_count",
+             "turn_rate_rad_per_s",
+             "hold_after_missing",
+             "initial_heading_rad",
+             "seed",
+             "rss_run_slots",
+             "rss_good_ratio",
+             "rss_reverse_db",
+             "rss_min_runs" };
+}
+
+void seeker_config::set(const std::string& key, const std::string& value)
+{
+    auto number = [&]() {
+        char* end = nullptr;
+        const double v = std::strtod(value.c_str(), &end);
+        if (value.empty() || *end != '\0')
+            throw std::invalid_argument("seeker_config." + key + ": cannot parse '" +
+                                        value + "' as a number");
+        return v;
+    };
+    auto integer = [&]() {
+        const double v = number();
+        if (v != std::floor(v) || std::abs(v) > 2e9)
+            throw std::invalid_argument("seeker_config." + key + ": '" + value +
+                                        "' is not an integer");
+        return static_cast<int>(v);
+    };
+    if (key == "strategy")
+        strategy = value;
+    else if (key == "speed_mps")
+        speed_mps = number();
+    else if (key == "carrier_hz")
+        carrier_hz = number();
+    else if (key == "slot_period_s")
+        slot_period_s = number();
+    else if (key == "delta_rad")
+        delta_rad = number();
+    else if (key == "delta_deg")
+        delta_rad = number() * M_PI / 180.0;
+    else if (key == "m_slots")
+        m_slots = integer();
+    else if (key == "circle_radius_m")
+        circle_radius_m = number();
+    else if (key == "moving_average_len")
+        moving_average_len = integer();
+    else if (key == "outlier_threshold_hz")
+        outlier_threshold_hz = number();
+    else if (key == "literal_eq4")
+        literal_eq4 = value == "true" || value == "1" || value == "True";
+    else if (key == "relock_count")
+        relock_count = integer();
+    else if (key == "turn_rate_rad_per_s")
+        turn_rate_rad_per_s = number();
+    else if (key == "hold_after_missing")
+        hold_after_missing = integer();
+    else if (key == "initial_heading_rad") {
+        if (value == "none" || value == "None" || value.empty())
+            initial_heading_rad.reset();
+        else
+            initial_heading_rad = number();
+    } else if (key == "seed")
+        seed = static_cast<std::uint64_t>(std::strtoull(value.c_str(), nullptr, 10));
+    else if (key == "rss_run_slots")
+        rss_run_slots = integer();
+    else if (key == "rss_good_ratio")
+        rss_good_ratio = number();
+    else if (key == "rss_reverse_db")
+        rss_reverse_db = number();
+    else if (key == "rss_min_runs")
+        rss_min_runs = integer();
+    else
+        throw std::invalid_argument("seeker_config: unknown parameter '" + key + "'");
 }
 
 std::vector<std::string> seeker::strategies()

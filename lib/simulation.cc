@@ -12,9 +12,24 @@
 #include <gr-rfseek/simulation.h>
 #include <gr-rfseek/tone_estimator.h>
 #include <cmath>
+#include <memory>
 
 namespace gr {
 namespace rfseek {
+
+namespace {
+std::unique_ptr<tone_estimator> make_estimator(const scenario& sc,
+                                               const estimator_config& e)
+{
+    return std::make_unique<tone_estimator>(sc.samp_rate_hz,
+                                            sc.window_len,
+                                            sc.fft_len,
+                                            e.window,
+                                            e.interpolator,
+                                            e.min_freq_hz,
+                                            e.max_freq_hz);
+}
+} // namespace
 
 simulation::simulation(const scenario& sc,
                        const seeker_config& cfg,
@@ -23,14 +38,7 @@ simulation::simulation(const scenario& sc,
 {
     d_sc.validate();
     d_cfg.validate();
-    // Fail early on bad estimator settings.
-    tone_estimator probe(d_sc.samp_rate_hz,
-                         d_sc.window_len,
-                         d_sc.fft_len,
-                         d_est.window,
-                         d_est.interpolator,
-                         d_est.min_freq_hz,
-                         d_est.max_freq_hz);
+    make_estimator(d_sc, d_est); // fail early on bad estimator settings
 }
 
 seeker_config simulation::seeker_for(const scenario& sc, const std::string& strategy)
@@ -49,13 +57,7 @@ run_result simulation::run(bool keep_records) const
 {
     run_result r;
     world w(d_sc);
-    tone_estimator est(d_sc.samp_rate_hz,
-                       d_sc.window_len,
-                       d_sc.fft_len,
-                       d_est.window,
-                       d_est.interpolator,
-                       d_est.min_freq_hz,
-                       d_est.max_freq_hz);
+    const auto est = make_estimator(d_sc, d_est);
     auto sk = seeker::make(d_cfg);
     std::vector<std::complex<float>> buf(d_sc.window_len);
     r.scatterers = w.scatterers();
@@ -63,7 +65,7 @@ run_result simulation::run(bool keep_records) const
 
     while (!w.finished()) {
         w.synthesize(buf.data(), buf.size());
-        const tone_estimate e = est.estimate(buf.data());
+        const tone_estimate e = est->estimate(buf.data());
         measurement m;
         m.slot = w.slot();
         m.time_s = w.time_s();

@@ -254,29 +254,28 @@ void world::advance(double commanded_heading_rad)
     draw_measured_heading();
 }
 
-void world::set_snr_db(double snr_db)
+void world::reconfigure(const std::function<void(scenario&)>& change)
 {
     scenario s = d_sc;
-    s.snr_db = snr_db;
-    s.validate();
+    change(s);
+    s.validate(); // throws before anything changes
     d_sc = s;
     update_amplitude();
 }
 
+void world::set_snr_db(double snr_db)
+{
+    reconfigure([snr_db](scenario& s) { s.snr_db = snr_db; });
+}
+
 void world::set_heading_noise_rad(double sigma)
 {
-    scenario s = d_sc;
-    s.heading_noise_rad = sigma;
-    s.validate();
-    d_sc = s;
+    reconfigure([sigma](scenario& s) { s.heading_noise_rad = sigma; });
 }
 
 void world::set_turn_rate_rad_per_s(double rate)
 {
-    scenario s = d_sc;
-    s.turn_rate_rad_per_s = rate;
-    s.validate();
-    d_sc = s;
+    reconfigure([rate](scenario& s) { s.turn_rate_rad_per_s = rate; });
 }
 
 } // namespace rfseek

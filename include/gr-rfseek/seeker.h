@@ -54,6 +54,15 @@ struct RFSEEK_API seeker_config {
 
     double max_doppler_hz() const;
     double effective_outlier_threshold_hz() const;
+
+    //! Names settable by set() (the fields, plus delta_deg for delta_rad in degrees).
+    static std::vector<std::string> keys();
+    /*!
+     * Set a field by name from text (numbers, true/false, none for initial_heading_rad).
+     * Throws std::invalid_argument for an unknown key or unparsable value; validate()
+     * checks ranges.
+     */
+    void set(const std::string& key, const std::string& value);
     //! Throws std::invalid_argument naming the field and its range.
     void validate() const;
 };

@@ -18,6 +18,7 @@
 #include <gr-rfseek/scenario.h>
 #include <complex>
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 namespace gr {
@@ -114,6 +115,7 @@ private:
 
     void draw_measured_heading();
     void update_amplitude();
+    void reconfigure(const std::function<void(scenario&)>& change);
     double mean_field_power(double distance_m) const;
 
     scenario d_sc;

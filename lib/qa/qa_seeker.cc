@@ -334,3 +334,26 @@ TEST(rss_baseline, scan_finds_the_line_of_sight_axis)
     }
     EXPECT_GE(within, 8);
 }
+
+TEST(seeker, config_set_by_name)
+{
+    seeker_config c;
+    c.set("delta_deg", "15");
+    EXPECT_NEAR(c.delta_rad, 15.0 * DEG, 1e-15);
+    c.set("m_slots", "30");
+    EXPECT_EQ(c.m_slots, 30);
+    c.set("strategy", "rss_baseline");
+    EXPECT_EQ(c.strategy, "rss_baseline");
+    c.set("literal_eq4", "true");
+    EXPECT_TRUE(c.literal_eq4);
+    c.set("initial_heading_rad", "0.5");
+    ASSERT_TRUE(c.initial_heading_rad.has_value());
+    c.set("initial_heading_rad", "none");
+    EXPECT_FALSE(c.initial_heading_rad.has_value());
+    EXPECT_NO_THROW(c.validate());
+    EXPECT_THROW(c.set("m_slots", "2.5"), std::invalid_argument);
+    EXPECT_THROW(c.set("delta_deg", "wide"), std::invalid_argument);
+    EXPECT_THROW(c.set("gain", "1"), std::invalid_argument);
+    for (const auto& k : seeker_config::keys())
+        EXPECT_NO_THROW(seeker_config().set(k, k == "strategy" ? "paper" : "1")) << k;
+}

@@ -6,6 +6,7 @@
 /* BINDTOOL_HEADER_FILE(scenario.h) */
 /* BINDTOOL_HEADER_FILE_HASH(8947323aabd2be787e0364c3d00926fa) */
 
+#include "kwargs.h"
 #include <gr-rfseek/scenario.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
@@ -25,17 +26,7 @@ void bind_scenario(py::module& m)
         "scenario (paper Table I + DESIGN.md). Fields set to None are "
         "drawn from the seed. scenario(**fields) sets fields by name.");
     c.def(py::init([](const py::kwargs& kw) {
-        scenario s;
-        py::object self = py::cast(&s, py::return_value_policy::reference);
-        const auto keys = scenario::keys();
-        for (const auto& item : kw) {
-            const auto key = py::cast<std::string>(item.first);
-            if (std::find(keys.begin(), keys.end(), key) == keys.end())
-                throw py::type_error("scenario() got an unexpected keyword argument '" +
-                                     key + "'");
-            py::setattr(self, key.c_str(), item.second);
-        }
-        return s;
+        return rfseek_from_kwargs<scenario>(kw, "scenario");
     }));
 #define RW(NAME, DOC) c.def_readwrite(#NAME, &scenario::NAME, DOC)
     RW(initial_distance_m, "d: UAV to emitter at start (m)");

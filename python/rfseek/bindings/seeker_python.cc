@@ -4,8 +4,9 @@
  */
 
 /* BINDTOOL_HEADER_FILE(seeker.h) */
-/* BINDTOOL_HEADER_FILE_HASH(8edab2e0f8d413e029c48359acf2a3b4) */
+/* BINDTOOL_HEADER_FILE_HASH(eb4ae8782de9ca1ff91512c76235d721) */
 
+#include "kwargs.h"
 #include <gr-rfseek/seeker.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
@@ -21,16 +22,7 @@ void bind_seeker(py::module& m)
                                 "Strategy and constants of the seeker. "
                                 "seeker_config(**fields) sets fields by name.");
     c.def(py::init([](const py::kwargs& kw) {
-        seeker_config s;
-        py::object self = py::cast(&s, py::return_value_policy::reference);
-        for (const auto& item : kw) {
-            const auto key = py::cast<std::string>(item.first);
-            if (key.rfind("_", 0) == 0 || !py::hasattr(self, key.c_str()))
-                throw py::type_error(
-                    "seeker_config() got an unexpected keyword argument '" + key + "'");
-            py::setattr(self, key.c_str(), item.second);
-        }
-        return s;
+        return rfseek_from_kwargs<seeker_config>(kw, "seeker_config");
     }));
 #define RW(NAME, DOC) c.def_readwrite(#NAME, &seeker_config::NAME, DOC)
     RW(strategy, "'paper', 'paper_no_circle' or 'rss_baseline'");
@@ -57,6 +49,8 @@ void bind_seeker(py::module& m)
     RW(rss_min_runs, "rss_baseline: runs on a heading before judging toward or away");
 #undef RW
     c.def("validate", &seeker_config::validate)
+        .def_static("keys", &seeker_config::keys)
+        .def("set", &seeker_config::set, py::arg("key"), py::arg("value"))
         .def_property_readonly("max_doppler_hz", &seeker_config::max_doppler_hz)
         .def_property_readonly("effective_outlier_threshold_hz",
                                &seeker_config::effective_outlier_threshold_hz);

@@ -4,7 +4,7 @@
  */
 
 /* BINDTOOL_HEADER_FILE(world.h) */
-/* BINDTOOL_HEADER_FILE_HASH(8d98abf65bde2eaece3c60c8ac5fabe6) */
+/* BINDTOOL_HEADER_FILE_HASH(bc203834aaf37f3f4eefda80f707ef13) */
 
 #include <gr-rfseek/world.h>
 #include <pybind11/complex.h>

@@ -6,7 +6,12 @@
 """The closed loop through GNU Radio against the core simulation (slot by slot, same
 seed), and seeking_controller's handling of invalid and malformed messages."""
 
+import importlib.util
 import math
+import os
+import subprocess
+import sys
+import tempfile
 
 import numpy as np
 import pmt
@@ -46,6 +51,37 @@ class qa_closed_loop(gr_unittest.TestCase):
             self.assertTrue(states[-1]["arrived"])
             self.assertTrue(core.summary.success)
             self.assertAlmostEqual(states[-1]["distance_flown"], core.summary.distance_m)
+
+    def test_grc_example_flies_the_core_trajectory(self):
+        # examples/seek_sim.grc, compiled by grcc and run headless (offscreen Qt), gives the
+        # core simulation's trajectory for its seed.
+        source = os.environ.get("RFSEEK_SOURCE_DIR",
+                                os.path.join(os.path.dirname(__file__), "..", ".."))
+        out = tempfile.mkdtemp(prefix="rfseek_grc_")
+        p = subprocess.run([sys.executable, "/usr/bin/grcc", "-o", out,
+                            os.path.join(source, "examples", "seek_sim.grc")],
+                           capture_output=True, text=True)
+        self.assertEqual(p.returncode, 0, p.stderr)
+        spec = importlib.util.spec_from_file_location("seek_sim", os.path.join(out, "seek_sim.py"))
+        mod = importlib.util.module_from_spec(spec)
+        spec.loader.exec_module(mod)
+        os.environ.setdefault("QT_QPA_PLATFORM", "offscreen")
+        from PyQt5 import Qt
+        app = Qt.QApplication.instance() or Qt.QApplication([])
+        tb = mod.seek_sim()
+        col = flowgraphs.collector()
+        tb.msg_connect(tb.channel, "state", col, "state")
+        tb.start()
+        tb.wait()
+        sc = tb.channel.config()
+        core = rfseek.simulation(sc, rfseek.simulation.seeker_for(sc, "paper")).run()
+        c = core.columns()
+        n = len(c["x_m"])
+        self.assertEqual(len(col.states), n + 1)
+        self.assertTrue(np.array_equal(np.array([s["x"] for s in col.states[:n]]), c["x_m"]))
+        self.assertTrue(np.array_equal(np.array([s["y"] for s in col.states[:n]]), c["y_m"]))
+        self.assertTrue(col.states[-1]["arrived"])
+        del app
 
     def test_invalid_and_malformed_messages(self):
         cfg = rfseek.seeker_config(strategy="paper_no_circle", initial_heading_rad=0.5)

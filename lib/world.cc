@@ -69,6 +69,8 @@ world::world(const scenario& sc) : d_sc(sc)
         const double ph = g.uniform(-M_PI, M_PI);
         d_scatterers.push_back(
             { r * std::cos(ang), r * std::sin(ang), std::polar(mag, ph) });
+        d_scatterer_range.push_back(
+            std::hypot(d_scatterers.back().x_m, d_scatterers.back().y_m));
     }
 
     update_amplitude();
@@ -115,26 +117,35 @@ double world::los_doppler_hz() const
     return d_sc.max_doppler_hz() * std::cos(d_heading - bearing_to_emitter_rad());
 }
 
-std::vector<path_state> world::paths() const
+void world::fill_paths(std::vector<path_state>& out) const
 {
     const double beta = TWO_PI / d_sc.wavelength_m();
     const double fd = d_sc.max_doppler_hz();
-    std::vector<path_state> out;
-    out.reserve(d_scatterers.size() + 1);
+    // f = f_d,max cos(heading - psi) = f_d,max (u . heading vector), u the unit vector
+    // toward the path's source point: no angle needs computing.
+    const double ch = std::cos(d_heading), sh = std::sin(d_heading);
+    out.clear();
     const double d = distance_m();
     out.push_back({ d_amp * std::polar(1.0 / d, -std::fmod(beta * d, TWO_PI)),
-                    fd * std::cos(d_heading - bearing_to_emitter_rad()),
+                    fd * (ch * -d_x + sh * -d_y) / d,
                     d });
-    for (const auto& s : d_scatterers) {
-        const double di = std::hypot(s.x_m, s.y_m);
-        const double ri = std::hypot(d_x - s.x_m, d_y - s.y_m);
-        const double L = di + ri;
-        const double psi = std::atan2(s.y_m - d_y, s.x_m - d_x);
+    for (std::size_t i = 0; i < d_scatterers.size(); ++i) {
+        const auto& s = d_scatterers[i];
+        const double dx = s.x_m - d_x, dy = s.y_m - d_y;
+        const double ri = std::hypot(dx, dy);
+        const double L = d_scatterer_range[i] + ri;
         out.push_back(
             { d_amp * s.gamma * std::polar(1.0 / L, -std::fmod(beta * L, TWO_PI)),
-              fd * std::cos(d_heading - psi),
+              fd * (ch * dx + sh * dy) / ri,
               L });
     }
+}
+
+std::vector<path_state> world::paths() const
+{
+    std::vector<path_state> out;
+    out.reserve(d_scatterers.size() + 1);
+    fill_paths(out);
     return out;
 }
 
@@ -174,9 +185,13 @@ void world::synthesize(std::complex<float>* out, std::size_t n) const
     // scenario, within the window); the offset's phase is the integral of f_o.
     const double f_o = d_cfo_hz + d_cfo_drift * 0.5 * nb * ts;
     const std::complex<double> rot = std::polar(1.0, d_cfo_phase);
-    const auto ps = paths();
-    std::vector<std::complex<double>> amp(ps.size());
-    std::vector<double> cyc(ps.size());
+    // Per-thread scratch: no allocation per slot once warm.
+    thread_local std::vector<path_state> ps;
+    thread_local std::vector<std::complex<double>> amp;
+    thread_local std::vector<double> cyc;
+    fill_paths(ps);
+    amp.resize(ps.size());
+    cyc.resize(ps.size());
     for (std::size_t p = 0; p < ps.size(); ++p) {
         amp[p] = ps[p].amplitude * rot;
         cyc[p] = (ps[p].doppler_hz + f_o) * ts;

@@ -115,11 +115,13 @@ private:
 
     void draw_measured_heading();
     void update_amplitude();
+    void fill_paths(std::vector<path_state>& out) const;
     void reconfigure(const std::function<void(scenario&)>& change);
     double mean_field_power(double distance_m) const;
 
     scenario d_sc;
     std::vector<scatterer> d_scatterers;
+    std::vector<double> d_scatterer_range; // emitter to scatterer i
     std::uint64_t d_slot = 0;
     double d_x = 0.0, d_y = 0.0, d_heading = 0.0, d_measured_heading = 0.0;
     double d_flown = 0.0;

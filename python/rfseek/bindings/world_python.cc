@@ -4,7 +4,7 @@
  */
 
 /* BINDTOOL_HEADER_FILE(world.h) */
-/* BINDTOOL_HEADER_FILE_HASH(bc203834aaf37f3f4eefda80f707ef13) */
+/* BINDTOOL_HEADER_FILE_HASH(e80c2924e25ddfc8c16b103da7148496) */
 
 #include <gr-rfseek/world.h>
 #include <pybind11/complex.h>

@@ -142,8 +142,9 @@ void channel_source_impl::publish_state()
         d, pmt::mp("distance_flown"), pmt::from_double(w.distance_flown_m()));
     d = pmt::dict_add(d, pmt::mp("cfo_hz"), pmt::from_double(w.cfo_hz()));
     d = pmt::dict_add(d, pmt::mp("doppler_hz"), pmt::from_double(w.los_doppler_hz()));
-    d = pmt::dict_add(d, pmt::mp("snr_db"), pmt::from_double(w.snr_db()));
-    const double p = std::max(w.received_power(), 1e-300);
+    const double p = std::max(w.received_power(), 1e-300); // one pass over the paths
+    d = pmt::dict_add(
+        d, pmt::mp("snr_db"), pmt::from_double(10.0 * std::log10(p / w.noise_power())));
     d = pmt::dict_add(d, pmt::mp("power_db"), pmt::from_double(10.0 * std::log10(p)));
     d = pmt::dict_add(d, pmt::mp("arrived"), pmt::from_bool(w.arrived()));
     d = pmt::dict_add(d, pmt::mp("capped"), pmt::from_bool(w.capped()));

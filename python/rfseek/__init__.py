@@ -34,3 +34,14 @@ def scenario_from(**fields):
             raise TypeError("unknown scenario field '%s'" % key)
         setattr(sc, key, value)
     return sc
+
+
+def apply_sets(sc, sets):
+    """Apply "KEY=VALUE" strings (command-line --set options) to a scenario; ValueError
+    names a malformed item or a bad field."""
+    for kv in sets:
+        key, sep, value = kv.partition("=")
+        if not sep:
+            raise ValueError("--set expects KEY=VALUE, got '%s'" % kv)
+        sc.set(key.strip(), value.strip())
+    return sc

@@ -37,7 +37,7 @@ flown to reach the success radius, per strategy, on the same seeds.
 
   --runs N              runs per strategy (default 100)
   --seed S              run i uses scenario seed S + i (default 1)
-  --strategy A[,B...]   paper, paper_no_circle, rss_baseline (default paper)
+  --strategy A[,B...]   paper, paper_no_circle, rss_baseline, adaptive (default paper)
   --threads T           worker threads (default: all cores)
   --out FILE.json       results (default montecarlo.json); rows also in FILE.csv
   --csv FILE.csv        where to write the rows (default: --out with .csv)
@@ -48,6 +48,8 @@ flown to reach the success radius, per strategy, on the same seeds.
                         rss_reverse_db, rss_min_runs) or an estimator setting
                         (interpolator, window, min_freq_hz, max_freq_hz); repeatable
   --scenario FILE       KEY=VALUE lines (# comments) or a flat JSON object, as --set
+  --preset P[,Q...]     named scenario variants (the study is repeated for each;
+                        --set values apply on top); --preset list shows them
   --sweep KEY=V1,V2,..  repeat the study for each value of one --set key
   --quiet               no progress bar
   --help
@@ -57,6 +59,7 @@ struct settings {
     scenario sc;
     std::vector<std::pair<std::string, std::string>> seeker_sets;
     estimator_config est;
+    std::vector<std::pair<std::string, std::string>> given; // --set/--scenario, in order
 };
 
 bool is_seeker_key(const std::string& k)
@@ -115,6 +118,7 @@ void apply_kv(settings& s, const std::string& kv, const char sep)
     if (v == "null")
         v = "none";
     apply(s, trim(kv.substr(0, p)), v);
+    s.given.emplace_back(trim(kv.substr(0, p)), v);
 }
 
 void load_file(settings& s, const std::string& path)
@@ -146,9 +150,54 @@ void load_file(settings& s, const std::string& path)
 struct row {
     std::string strategy;
     std::uint64_t seed = 0;
-    std::string sweep_value;
+    std::size_t point = 0;
     run_summary r;
 };
+
+// One point of the study: a preset (or none) and a sweep value (or none), with the
+// settings it runs: the preset first, then the given --set/--scenario values, then the
+// sweep value.
+struct study_point {
+    std::string preset;
+    std::string sweep_value;
+    settings s;
+};
+
+study_point make_point(const settings& given,
+                       const std::string& preset,
+                       const std::string& sweep_key,
+                       const std::string& sweep_value)
+{
+    study_point p{ preset, sweep_value, settings{} };
+    if (!preset.empty())
+        p.s.sc.apply_preset(preset);
+    for (const auto& kv : given.given)
+        apply(p.s, kv.first, kv.second);
+    if (!sweep_key.empty())
+        apply(p.s, sweep_key, sweep_value);
+    p.s.given = given.given;
+    return p;
+}
+
+std::string preset_list()
+{
+    std::string o = "presets (rfseek-montecarlo --preset NAME[,NAME...]):\n";
+    for (const auto& name : scenario::presets()) {
+        std::string over;
+        for (const auto& kv : scenario::preset_overrides(name))
+            over += (over.empty() ? "" : " ") + kv.first + "=" + kv.second;
+        char line[512];
+        std::snprintf(line,
+                      sizeof line,
+                      "  %-10s %s%s%s\n",
+                      name.c_str(),
+                      scenario::preset_description(name).c_str(),
+                      over.empty() ? "" : "\n             ",
+                      over.c_str());
+        o += line;
+    }
+    return o;
+}
 
 double percentile(std::vector<double> v, double q)
 {
@@ -258,8 +307,10 @@ int main(int argc, char** argv)
     std::string out = "montecarlo.json", csv;
     std::string sweep_key;
     std::vector<std::string> sweep_values{ "" };
+    std::vector<std::string> presets{ "" };
     bool quiet = false;
     settings base;
+    std::vector<study_point> points;
     std::string cmdline;
     for (int i = 0; i < argc; ++i)
         cmdline += (i ? " " : "") + std::string(argv[i]);
@@ -288,7 +339,7 @@ int main(int argc, char** argv)
                     if (std::find(known.begin(), known.end(), s) == known.end())
                         throw std::invalid_argument("--strategy: unknown '" + s +
                                                     "' (paper, paper_no_circle, "
-                                                    "rss_baseline)");
+                                                    "rss_baseline, adaptive)");
             } else if (a == "--threads") {
                 threads = static_cast<unsigned>(num(a, next()));
                 if (threads < 1)
@@ -301,6 +352,17 @@ int main(int argc, char** argv)
                 apply_kv(base, next(), '=');
             } else if (a == "--scenario") {
                 load_file(base, next());
+            } else if (a == "--preset") {
+                const std::string v = next();
+                if (v == "list") {
+                    std::cout << preset_list();
+                    return 0;
+                }
+                presets = split(v, ',');
+                if (presets.empty())
+                    throw std::invalid_argument("--preset needs a name (--preset list)");
+                for (const auto& p : presets)
+                    scenario::preset_overrides(p); // throws for an unknown name
             } else if (a == "--sweep") {
                 const std::string s = next();
                 const auto p = s.find('=');
@@ -321,26 +383,28 @@ int main(int argc, char** argv)
                        ? out.substr(0, out.size() - 5)
                        : out) +
                   ".csv";
-        // Validate every configuration before the long run starts.
-        for (const auto& v : sweep_values) {
-            settings s = base;
-            if (!sweep_key.empty())
-                apply(s, sweep_key, v);
-            s.sc.validate();
-            for (const auto& st : strategies) {
-                seeker_config c = simulation::seeker_for(s.sc, st);
-                for (const auto& kv : s.seeker_sets)
-                    c.set(kv.first, kv.second);
-                simulation check(s.sc, c, s.est);
+        // Build and validate every configuration before the long run starts.
+        for (const auto& p : presets)
+            for (const auto& v : sweep_values) {
+                points.push_back(make_point(base, p, sweep_key, v));
+                const settings& s = points.back().s;
+                s.sc.validate();
+                for (const auto& st : strategies) {
+                    seeker_config c = simulation::seeker_for(s.sc, st);
+                    for (const auto& kv : s.seeker_sets)
+                        c.set(kv.first, kv.second);
+                    simulation check(s.sc, c, s.est);
+                }
             }
-        }
     } catch (const std::exception& e) {
         std::cerr << "rfseek-montecarlo: error: " << e.what() << "\n";
         return 2;
     }
+    const bool by_preset = !presets.front().empty();
+    const bool by_sweep = !sweep_key.empty();
 
-    const double fft_us = fftw_floor_us(base.sc.fft_len);
-    const std::size_t total = sweep_values.size() * strategies.size() * runs;
+    const double fft_us = fftw_floor_us(points.front().s.sc.fft_len);
+    const std::size_t total = points.size() * strategies.size() * runs;
     std::vector<row> rows(total);
     std::atomic<std::size_t> next_job{ 0 }, done{ 0 };
     std::atomic<std::uint64_t> slots{ 0 };
@@ -374,19 +438,17 @@ int main(int argc, char** argv)
             const std::size_t j = next_job.fetch_add(1);
             if (j >= total)
                 return;
-            const std::size_t per_value = strategies.size() * runs;
-            const std::size_t vi = j / per_value;
-            const std::size_t si = (j % per_value) / runs;
+            const std::size_t per_point = strategies.size() * runs;
+            const std::size_t pi = j / per_point;
+            const std::size_t si = (j % per_point) / runs;
             const std::size_t ri = j % runs;
-            settings s = base;
-            if (!sweep_key.empty())
-                apply(s, sweep_key, sweep_values[vi]);
+            settings s = points[pi].s;
             s.sc.seed = seed + ri;
             seeker_config c = simulation::seeker_for(s.sc, strategies[si]);
             for (const auto& kv : s.seeker_sets)
                 c.set(kv.first, kv.second);
             const run_result res = simulation(s.sc, c, s.est).run(false);
-            rows[j] = row{ strategies[si], s.sc.seed, sweep_values[vi], res.summary };
+            rows[j] = row{ strategies[si], s.sc.seed, pi, res.summary };
             slots += res.summary.slots;
             ++done;
             if (!quiet) {
@@ -408,48 +470,77 @@ int main(int argc, char** argv)
         print_progress(true);
     const double wall = std::chrono::duration<double>(clk::now() - t0).count();
 
+    auto select = [&](std::size_t point, const std::string& st) {
+        std::vector<const row*> sel;
+        for (const auto& r : rows)
+            if (r.strategy == st && r.point == point)
+                sel.push_back(&r);
+        return sel;
+    };
+    auto point_json = [&](std::size_t p) {
+        std::ostringstream o;
+        if (by_preset)
+            o << "\"preset\": " << jstr(points[p].preset);
+        if (by_sweep)
+            o << (by_preset ? ", " : "") << "\"value\": " << jstr(points[p].sweep_value);
+        for (const auto& st : strategies)
+            o << ", " << jstr(st) << ": "
+              << summary_json(select(p, st), points[p].s.sc.shortest_path_m());
+        return o.str();
+    };
+
     // JSON
+    const settings& first = points.front().s;
     std::ostringstream j;
     j << "{\n  \"tool\": \"rfseek-montecarlo\",\n  \"command\": " << jstr(cmdline)
       << ",\n  \"runs\": " << runs << ",\n  \"seed\": " << seed
       << ",\n  \"strategies\": [";
     for (std::size_t i = 0; i < strategies.size(); ++i)
         j << (i ? ", " : "") << jstr(strategies[i]);
-    j << "],\n  \"scenario\": " << base.sc.to_json() << ",\n  \"seeker_overrides\": {";
-    for (std::size_t i = 0; i < base.seeker_sets.size(); ++i)
-        j << (i ? ", " : "") << jstr(base.seeker_sets[i].first) << ": "
-          << jstr(base.seeker_sets[i].second);
-    j << "},\n  \"estimator\": {\"window\": " << jstr(base.est.window)
-      << ", \"interpolator\": " << jstr(base.est.interpolator)
-      << ", \"min_freq_hz\": " << jnum(base.est.min_freq_hz)
-      << ", \"max_freq_hz\": " << jnum(base.est.max_freq_hz) << "},\n";
-    if (!sweep_key.empty()) {
-        j << "  \"sweep\": {\"key\": " << jstr(sweep_key) << ", \"values\": [";
-        for (std::size_t i = 0; i < sweep_values.size(); ++i)
-            j << (i ? ", " : "") << jstr(sweep_values[i]);
-        j << "], \"summary\": [\n";
-        for (std::size_t v = 0; v < sweep_values.size(); ++v) {
-            settings s = base;
-            apply(s, sweep_key, sweep_values[v]);
-            j << "    {\"value\": " << jstr(sweep_values[v]);
-            for (const auto& st : strategies) {
-                std::vector<const row*> sel;
-                for (const auto& r : rows)
-                    if (r.strategy == st && r.sweep_value == sweep_values[v])
-                        sel.push_back(&r);
-                j << ", " << jstr(st) << ": "
-                  << summary_json(sel, s.sc.shortest_path_m());
-            }
-            j << "}" << (v + 1 < sweep_values.size() ? "," : "") << "\n";
+    j << "],\n  \"scenario\": " << first.sc.to_json() << ",\n  \"seeker_overrides\": {";
+    for (std::size_t i = 0; i < first.seeker_sets.size(); ++i)
+        j << (i ? ", " : "") << jstr(first.seeker_sets[i].first) << ": "
+          << jstr(first.seeker_sets[i].second);
+    j << "},\n  \"estimator\": {\"window\": " << jstr(first.est.window)
+      << ", \"interpolator\": " << jstr(first.est.interpolator)
+      << ", \"min_freq_hz\": " << jnum(first.est.min_freq_hz)
+      << ", \"max_freq_hz\": " << jnum(first.est.max_freq_hz) << "},\n";
+    if (by_preset) {
+        j << "  \"presets\": {\"names\": [";
+        for (std::size_t i = 0; i < presets.size(); ++i)
+            j << (i ? ", " : "") << jstr(presets[i]);
+        j << "], \"scenarios\": {";
+        for (std::size_t p = 0, k = 0; p < points.size(); ++p)
+            if (points[p].sweep_value == sweep_values.front())
+                j << (k++ ? ", " : "") << jstr(points[p].preset) << ": "
+                  << points[p].s.sc.to_json();
+        j << "}},\n";
+    }
+    if (by_preset || by_sweep) {
+        if (by_sweep) {
+            j << "  \"sweep\": {\"key\": " << jstr(sweep_key) << ", \"values\": [";
+            for (std::size_t i = 0; i < sweep_values.size(); ++i)
+                j << (i ? ", " : "") << jstr(sweep_values[i]);
+            j << "], \"summary\": [\n";
+            for (std::size_t p = 0; p < points.size(); ++p)
+                j << "    {" << point_json(p) << "}" << (p + 1 < points.size() ? "," : "")
+                  << "\n";
+            j << "  ]},\n";
         }
-        j << "  ]},\n";
+        j << "  \"points\": [\n";
+        for (std::size_t p = 0; p < points.size(); ++p)
+            j << "    {" << point_json(p) << "}" << (p + 1 < points.size() ? "," : "")
+              << "\n";
+        j << "  ],\n";
     }
     j << "  \"rows\": [\n";
     for (std::size_t i = 0; i < rows.size(); ++i) {
         const auto& r = rows[i];
         j << "    {\"seed\": " << r.seed << ", \"strategy\": " << jstr(r.strategy);
-        if (!sweep_key.empty())
-            j << ", \"sweep_value\": " << jstr(r.sweep_value);
+        if (by_preset)
+            j << ", \"preset\": " << jstr(points[r.point].preset);
+        if (by_sweep)
+            j << ", \"sweep_value\": " << jstr(points[r.point].sweep_value);
         j << ", \"distance_m\": " << jnum(r.r.distance_m)
           << ", \"ratio\": " << jnum(r.r.ratio) << ", \"time_s\": " << jnum(r.r.time_s)
           << ", \"success\": " << (r.r.success ? "true" : "false")
@@ -457,20 +548,13 @@ int main(int argc, char** argv)
           << (r.r.has_stage1 ? jnum(r.r.stage1_heading_error_rad * 180.0 / M_PI) : "null")
           << "}" << (i + 1 < rows.size() ? "," : "") << "\n";
     }
+    // "summary": the last point's (the only one without presets or a sweep).
     j << "  ],\n  \"summary\": {";
-    const std::string last_value = sweep_values.back();
     {
-        settings s = base;
-        if (!sweep_key.empty())
-            apply(s, sweep_key, last_value);
-        for (std::size_t k = 0; k < strategies.size(); ++k) {
-            std::vector<const row*> sel;
-            for (const auto& r : rows)
-                if (r.strategy == strategies[k] && r.sweep_value == last_value)
-                    sel.push_back(&r);
+        const std::size_t p = points.size() - 1;
+        for (std::size_t k = 0; k < strategies.size(); ++k)
             j << (k ? ",\n    " : "\n    ") << jstr(strategies[k]) << ": "
-              << summary_json(sel, s.sc.shortest_path_m());
-        }
+              << summary_json(select(p, strategies[k]), points[p].s.sc.shortest_path_m());
     }
     const double per_run = wall * std::min<double>(threads, total) / total;
     j << "\n  },\n  \"timing\": {\"threads\": " << threads
@@ -481,12 +565,15 @@ int main(int argc, char** argv)
     std::ofstream(out) << j.str();
 
     std::ofstream c(csv);
-    c << "seed,strategy" << (sweep_key.empty() ? "" : ",sweep_value")
+    c << "seed,strategy" << (by_preset ? ",preset" : "")
+      << (by_sweep ? ",sweep_value" : "")
       << ",distance_m,ratio,time_s,success,slots,stage1_heading_error_deg\n";
     for (const auto& r : rows) {
         c << r.seed << "," << r.strategy;
-        if (!sweep_key.empty())
-            c << "," << r.sweep_value;
+        if (by_preset)
+            c << "," << points[r.point].preset;
+        if (by_sweep)
+            c << "," << points[r.point].sweep_value;
         c << "," << jnum(r.r.distance_m) << "," << jnum(r.r.ratio) << ","
           << jnum(r.r.time_s) << "," << (r.r.success ? 1 : 0) << "," << r.r.slots << ","
           << (r.r.has_stage1 ? jnum(r.r.stage1_heading_error_rad * 180.0 / M_PI) : "")
@@ -494,23 +581,23 @@ int main(int argc, char** argv)
     }
 
     // Console summary
-    std::printf("rfseek-montecarlo: %d runs x %zu strategies%s, %u threads, %.1f s "
-                "(%.3f s per run per thread, %.2f us per slot, FFTW %d: %.2f us)\n",
-                runs,
-                strategies.size(),
-                sweep_key.empty() ? ""
-                                  : (" x " + std::to_string(sweep_values.size()) +
-                                     " values of " + sweep_key)
-                                        .c_str(),
-                threads,
-                wall,
-                per_run,
-                1e6 * wall * std::min<double>(threads, total) / slots,
-                base.sc.fft_len,
-                fft_us);
-    for (const auto& v : sweep_values) {
-        if (!sweep_key.empty())
-            std::printf("%s = %s\n", sweep_key.c_str(), v.c_str());
+    std::printf(
+        "rfseek-montecarlo: %d runs x %zu strategies x %zu points, %u threads, "
+        "%.1f s (%.3f s per run per thread, %.2f us per slot, FFTW %d: %.2f us)\n",
+        runs,
+        strategies.size(),
+        points.size(),
+        threads,
+        wall,
+        per_run,
+        1e6 * wall * std::min<double>(threads, total) / slots,
+        first.sc.fft_len,
+        fft_us);
+    for (std::size_t p = 0; p < points.size(); ++p) {
+        if (by_preset)
+            std::printf("preset %s%s", points[p].preset.c_str(), by_sweep ? ", " : "\n");
+        if (by_sweep)
+            std::printf("%s = %s\n", sweep_key.c_str(), points[p].sweep_value.c_str());
         std::printf("  %-16s %8s %10s %10s %10s %8s %8s %8s\n",
                     "strategy",
                     "success",
@@ -523,12 +610,11 @@ int main(int argc, char** argv)
         for (const auto& st : strategies) {
             std::vector<double> d, ratio;
             int ok = 0;
-            for (const auto& r : rows)
-                if (r.strategy == st && r.sweep_value == v) {
-                    d.push_back(r.r.distance_m);
-                    ratio.push_back(r.r.ratio);
-                    ok += r.r.success;
-                }
+            for (const row* r : select(p, st)) {
+                d.push_back(r->r.distance_m);
+                ratio.push_back(r->r.ratio);
+                ok += r->r.success;
+            }
             double md = 0, mr = 0;
             for (std::size_t i = 0; i < d.size(); ++i) {
                 md += d[i];

@@ -290,5 +290,80 @@ std::string scenario::to_json() const
     return os.str();
 }
 
+namespace {
+
+struct preset_def {
+    const char* name;
+    const char* description;
+    std::vector<std::pair<std::string, std::string>> overrides;
+};
+
+// Turn rate 30 deg/s = 0.5235987755982988 rad/s; heading noise 5 deg = 0.0872664626 rad.
+const std::vector<preset_def>& preset_table()
+{
+    static const std::vector<preset_def> table{
+        { "reference", "the paper's Table I with DESIGN.md's choices", {} },
+        { "turn30",
+          "turns limited to 30 deg/s",
+          { { "turn_rate_rad_per_s", "0.5235987755982988" } } },
+        { "start1km",
+          "start 1 km from the emitter (SNR 0 dB there)",
+          { { "initial_distance_m", "1000" } } },
+        { "start10km",
+          "start 10 km from the emitter (SNR 0 dB there)",
+          { { "initial_distance_m", "10000" } } },
+        { "speed20", "20 m/s (f_d,max 133 Hz)", { { "speed_mps", "20" } } },
+        { "drift2", "CFO drift fixed at 2 Hz/s", { { "cfo_drift_hz_per_s", "2" } } },
+        { "drift10", "CFO drift fixed at 10 Hz/s", { { "cfo_drift_hz_per_s", "10" } } },
+        { "snr-15", "initial SNR -15 dB", { { "snr_db", "-15" } } },
+        { "snr-22", "initial SNR -22 dB", { { "snr_db", "-22" } } },
+        { "hard",
+          "30 deg/s turns, initial SNR -10 dB, CFO drift 2 Hz/s, 5 deg heading noise",
+          { { "turn_rate_rad_per_s", "0.5235987755982988" },
+            { "snr_db", "-10" },
+            { "cfo_drift_hz_per_s", "2" },
+            { "heading_noise_rad", "0.08726646259971647" } } },
+    };
+    return table;
+}
+
+const preset_def& find_preset(const std::string& name)
+{
+    for (const auto& p : preset_table())
+        if (name == p.name)
+            return p;
+    std::string all;
+    for (const auto& p : preset_table())
+        all += (all.empty() ? "" : ", ") + std::string(p.name);
+    throw std::invalid_argument("preset '" + name + "': unknown; one of " + all);
+}
+
+} // namespace
+
+std::vector<std::string> scenario::presets()
+{
+    std::vector<std::string> names;
+    for (const auto& p : preset_table())
+        names.emplace_back(p.name);
+    return names;
+}
+
+std::vector<std::pair<std::string, std::string>>
+scenario::preset_overrides(const std::string& name)
+{
+    return find_preset(name).overrides;
+}
+
+std::string scenario::preset_description(const std::string& name)
+{
+    return find_preset(name).description;
+}
+
+void scenario::apply_preset(const std::string& name)
+{
+    for (const auto& kv : find_preset(name).overrides)
+        set(kv.first, kv.second);
+}
+
 } // namespace rfseek
 } // namespace gr

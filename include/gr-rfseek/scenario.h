@@ -15,6 +15,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace gr {
@@ -87,6 +88,20 @@ struct RFSEEK_API scenario {
     std::string get(const std::string& key) const;
     //! All fields as a JSON object (one line).
     std::string to_json() const;
+
+    /*!
+     * Named scenario variants, kept here for programs, tests and docs alike:
+     * reference, turn30, start1km, start10km, speed20, drift2, drift10, snr-15, snr-22,
+     * hard. A preset is a list of set() overrides on the reference scenario.
+     */
+    static std::vector<std::string> presets();
+    //! The overrides of a preset, as (key, value) pairs for set().
+    static std::vector<std::pair<std::string, std::string>>
+    preset_overrides(const std::string& name);
+    //! One line saying what the preset is.
+    static std::string preset_description(const std::string& name);
+    //! Apply a preset's overrides to this scenario (throws for an unknown name).
+    void apply_preset(const std::string& name);
 };
 
 } // namespace rfseek

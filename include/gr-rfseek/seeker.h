@@ -23,10 +23,11 @@ namespace rfseek {
 
 //! Every constant of the seeking strategies (angles in radians).
 struct RFSEEK_API seeker_config {
-    std::string strategy = "paper"; //!< "paper", "paper_no_circle" or "rss_baseline"
-    double speed_mps = 10.0;        //!< v
-    double carrier_hz = 2.0e9;      //!< f_c (for f_d,max = v f_c / c)
-    double slot_period_s = 0.05;    //!< T_slot
+    //! "paper", "paper_no_circle", "rss_baseline" or "adaptive" (ours, not the paper's)
+    std::string strategy = "paper";
+    double speed_mps = 10.0;                //!< v
+    double carrier_hz = 2.0e9;              //!< f_c (for f_d,max = v f_c / c)
+    double slot_period_s = 0.05;            //!< T_slot
     double delta_rad = 0.17453292519943295; //!< Stage-2 perturbation delta (10 deg)
     int m_slots = 20;                       //!< M: slots per half step
     double circle_radius_m = 100.0;         //!< R_c of the Stage-1 circle
@@ -35,6 +36,14 @@ struct RFSEEK_API seeker_config {
         0.0;                  //!< eq. 4 threshold; 0 = 2 f_d,max (4 pi v f_c / c rad/s)
     bool literal_eq4 = false; //!< eq. 4 as printed (compare with the previous raw value)
     int relock_count = 5;     //!< re-lock after this many agreeing rejections
+    //! eq. 4 locks only once this many consecutive candidates agree (no unconditional
+    //! first value; literal_eq4 takes the first value).
+    int lock_count = 3;
+    //! Measurements whose estimated SNR is below this are not eq. 4 candidates (dB).
+    double min_snr_db = -20.0;
+    //! Stage 1 (paper): least-squares fit of the circle's frequencies with a linear CFO
+    //! trend; false = the paper's argmax of the moving average.
+    bool stage1_fit = true;
     double turn_rate_rad_per_s = 0.0; //!< the vehicle's limit; 0 = instantaneous
     int hold_after_missing =
         10; //!< slots without valid measurements before holding course
@@ -51,6 +60,18 @@ struct RFSEEK_API seeker_config {
     double rss_reverse_db = 3.0;
     //! Runs on a heading before judging toward or away.
     int rss_min_runs = 10;
+    // adaptive (ours, docs/seeker.md): acquisition on three headings, then probe cycles
+    // (+delta, -delta, -delta, +delta) inverted by a least-squares fit.
+    int adaptive_acquire_slots = 3; //!< slots per acquisition heading (120 deg apart)
+    //! Slots flown straight on before an acquisition is retried (out of a fade).
+    int adaptive_relocate_slots = 20;
+    int adaptive_track_slots = 10; //!< slots per probe segment (4 segments per cycle)
+    double adaptive_gain = 0.5;    //!< fraction of the estimated error removed per cycle
+    double adaptive_delta_min_rad = 0.03490658503988659; //!< 2 deg
+    double adaptive_delta_max_rad = 0.3490658503988659;  //!< 20 deg
+    //! Estimated errors beyond this (or flying away) start a new acquisition.
+    double adaptive_reacquire_rad = 1.0471975511965976; //!< 60 deg
+    bool adaptive_drift = true; //!< fit (and so cancel) a linear CFO drift per cycle
 
     double max_doppler_hz() const;
     double effective_outlier_threshold_hz() const;

@@ -202,32 +202,56 @@ TEST(seeker, eq4_rejects_an_outlier_and_relocks)
     cfg.strategy = "paper_no_circle";
     cfg.initial_heading_rad = 0.0;
     auto sk = seeker::make(cfg);
-    auto feed = [&](std::uint64_t slot, double f) {
+    auto feed = [&](std::uint64_t slot, double f, double snr_db = 0.0) {
         measurement m;
         m.slot = slot;
         m.freq_hz = f;
+        m.snr_db = snr_db;
         m.valid = true;
         return sk->update(m);
     };
-    EXPECT_TRUE(feed(0, 100.0).accepted);
-    EXPECT_TRUE(feed(1, 110.0).accepted);
-    const command out = feed(2, 900.0); // outlier: replaced by the last accepted value
+    ASSERT_EQ(cfg.lock_count, 3);
+    // Initialisation (issue 9): an outlier first measurement does not set the filter, nor
+    // does any single value; it locks once lock_count consecutive values agree.
+    EXPECT_FALSE(feed(0, 40000.0).accepted);
+    EXPECT_FALSE(feed(1, 100.0).accepted);
+    EXPECT_FALSE(feed(2, 105.0).accepted);
+    const command lock = feed(3, 110.0);
+    EXPECT_TRUE(lock.accepted);
+    EXPECT_EQ(lock.filtered_freq_hz, 110.0);
+    const command out = feed(4, 900.0); // outlier: replaced by the last accepted value
     EXPECT_FALSE(out.accepted);
     EXPECT_EQ(out.filtered_freq_hz, 110.0);
     // The sample after the outlier is compared with the last accepted value, not with
     // the outlier (the literal eq. 4 would let the outlier through here).
-    const command next = feed(3, 115.0);
+    const command next = feed(5, 115.0);
     EXPECT_TRUE(next.accepted);
     EXPECT_EQ(next.filtered_freq_hz, 115.0);
+    // A value whose estimated SNR is below min_snr_db is no candidate, even when it
+    // agrees with the reference.
+    const command weak = feed(6, 116.0, cfg.min_snr_db - 1.0);
+    EXPECT_FALSE(weak.accepted);
+    EXPECT_EQ(weak.filtered_freq_hz, 115.0);
     // A lasting jump (e.g. the CFO re-tuned) is re-acquired after relock_count samples.
-    int k = 4;
+    int k = 7;
     command c;
-    for (int i = 0; i < cfg.relock_count; ++i)
+    for (int i = 0; i < cfg.relock_count; ++i) {
         c = feed(k++, 600.0 + i);
+        if (i + 1 < cfg.relock_count)
+            EXPECT_FALSE(c.accepted);
+    }
     EXPECT_TRUE(c.accepted);
     EXPECT_EQ(c.filtered_freq_hz, 600.0 + cfg.relock_count - 1);
 
+    // Weak values never lock the filter.
+    sk = seeker::make(cfg);
+    for (int i = 0; i < 10; ++i)
+        EXPECT_FALSE(feed(i, 100.0, cfg.min_snr_db - 0.5).accepted);
+
     cfg.literal_eq4 = true;
+    sk = seeker::make(cfg);
+    EXPECT_TRUE(feed(0, 40000.0).accepted); // as printed: the first value sets the filter
+    EXPECT_FALSE(feed(1, 100.0).accepted);
     sk = seeker::make(cfg);
     feed(0, 100.0);
     EXPECT_FALSE(feed(1, 900.0).accepted);

@@ -4,7 +4,7 @@
  */
 
 /* BINDTOOL_HEADER_FILE(scenario.h) */
-/* BINDTOOL_HEADER_FILE_HASH(8947323aabd2be787e0364c3d00926fa) */
+/* BINDTOOL_HEADER_FILE_HASH(9f3d3757eb16248f0429528f1cd391e2) */
 
 #include "kwargs.h"
 #include <gr-rfseek/scenario.h>
@@ -69,6 +69,22 @@ void bind_scenario(py::module& m)
         .def("set", &scenario::set, py::arg("key"), py::arg("value"))
         .def("get", &scenario::get, py::arg("key"))
         .def("to_json", &scenario::to_json)
+        .def_static("presets", &scenario::presets, "Names of the study presets.")
+        .def_static("preset_overrides",
+                    &scenario::preset_overrides,
+                    py::arg("name"),
+                    "A preset's (key, value) overrides of the reference scenario.")
+        .def_static("preset_description", &scenario::preset_description, py::arg("name"))
+        .def_static(
+            "preset",
+            [](const std::string& name) {
+                scenario s;
+                s.apply_preset(name);
+                return s;
+            },
+            py::arg("name"),
+            "The reference scenario with a preset applied.")
+        .def("apply_preset", &scenario::apply_preset, py::arg("name"))
         .def("copy", [](const scenario& s) { return scenario(s); })
         .def("__repr__",
              [](const scenario& s) { return "rfseek.scenario(" + s.to_json() + ")"; });

@@ -4,7 +4,7 @@
  */
 
 /* BINDTOOL_HEADER_FILE(seeker.h) */
-/* BINDTOOL_HEADER_FILE_HASH(eb4ae8782de9ca1ff91512c76235d721) */
+/* BINDTOOL_HEADER_FILE_HASH(a9874a32f7bf266ed42c787ea975a5a1) */
 
 #include "kwargs.h"
 #include <gr-rfseek/seeker.h>
@@ -25,7 +25,9 @@ void bind_seeker(py::module& m)
         return rfseek_from_kwargs<seeker_config>(kw, "seeker_config");
     }));
 #define RW(NAME, DOC) c.def_readwrite(#NAME, &seeker_config::NAME, DOC)
-    RW(strategy, "'paper', 'paper_no_circle' or 'rss_baseline'");
+    RW(strategy,
+       "'paper', 'paper_no_circle', 'rss_baseline' or 'adaptive' (ours, not the "
+       "paper's)");
     RW(speed_mps, "v (m/s)");
     RW(carrier_hz, "f_c (Hz)");
     RW(slot_period_s, "T_slot (s)");
@@ -36,6 +38,11 @@ void bind_seeker(py::module& m)
     RW(outlier_threshold_hz, "eq. 4 threshold (Hz); 0 = 2 f_d,max");
     RW(literal_eq4, "eq. 4 as printed (compare with the previous raw value)");
     RW(relock_count, "re-lock after this many agreeing rejections");
+    RW(lock_count, "eq. 4 locks once this many consecutive candidates agree");
+    RW(min_snr_db,
+       "values whose estimated SNR is below this are no eq. 4 candidates (dB)");
+    RW(stage1_fit,
+       "paper: Stage 1 by least squares with a CFO trend (False: the paper's argmax)");
     RW(turn_rate_rad_per_s, "vehicle turn-rate limit (rad/s); 0 = instantaneous");
     RW(hold_after_missing, "slots without valid measurements before holding course");
     RW(initial_heading_rad,
@@ -47,6 +54,16 @@ void bind_seeker(py::module& m)
     RW(rss_reverse_db,
        "rss_baseline: turn back when the power fell this much along a run");
     RW(rss_min_runs, "rss_baseline: runs on a heading before judging toward or away");
+    RW(adaptive_acquire_slots, "adaptive: slots per acquisition heading");
+    RW(adaptive_relocate_slots,
+       "adaptive: slots flown straight on before an acquisition is retried");
+    RW(adaptive_track_slots, "adaptive: slots per probe segment (4 per cycle)");
+    RW(adaptive_gain, "adaptive: fraction of the measured error removed per cycle");
+    RW(adaptive_delta_min_rad, "adaptive: smallest probe half-angle (rad)");
+    RW(adaptive_delta_max_rad, "adaptive: largest probe half-angle (rad)");
+    RW(adaptive_reacquire_rad,
+       "adaptive: errors beyond this start a new acquisition (rad)");
+    RW(adaptive_drift, "adaptive: fit a linear CFO drift per probe cycle");
 #undef RW
     c.def("validate", &seeker_config::validate)
         .def_static("keys", &seeker_config::keys)

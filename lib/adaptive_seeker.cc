@@ -1,0 +1,297 @@
+/* -*- c++ -*- */
+/*
+ * Copyright 2026 gr-rfseek authors.
+ * SPDX-License-Identifier: GPL-3.0-or-later
+ *
+ * adaptive_seeker: strategy `adaptive`. Ours, not the paper's: it keeps the paper's idea
+ * (Stage-2 probing around the estimated bearing) and drops its circle and its small eq. 5
+ * gain. docs/seeker.md has the analysis behind each constant.
+ *
+ * - Acquisition: fly three headings 120 deg apart twice round (adaptive_acquire_slots
+ *   each; with a turn-rate limit, one full turn at the maximum rate) and fit
+ *   f = a cos psi + b sin psi + c + d t (doppler_fit): the whole circle of bearings,
+ *   "flying away" included, and a linear CFO drift, in a few slots.
+ * - Tracking: probe cycles +delta, -delta, -delta, +delta (adaptive_track_slots each).
+ * The palindromic order makes a linear CFO drift orthogonal to the probe difference, and
+ *   the fit has a drift term too. The fit inverts the model (asin of the normalised
+ *   difference), so one cycle measures the whole error; theta moves by adaptive_gain of
+ *   it. delta follows the measured noise (delta* = (G/N)^(1/4) sqrt(sigma/A), the
+ *   minimum of zig-zag plus pointing cost) and the last error, within [delta_min,
+ *   delta_max].
+ * - Away check: the probe mean is the CFO plus A cos(theta~). The CFO is tracked from
+ *   cycle to cycle; a mean below it by more than A says |theta~| > 90 deg, and an error
+ *   beyond adaptive_reacquire_rad also starts a new acquisition.
+ * - Turn awareness: every measurement enters the fits at its own heading (the commanded
+ *   heading once the vehicle has turned to it, the measured one while it turns), never
+ *   averaged as if flown straight at the probe heading.
+ * - Eq. 4 (outlier_filter) vets every frequency; rejected values are simply left out.
+ */
+
+#include "doppler_fit.h"
+#include "strategies.h"
+#include <gr-rfseek/world.h>
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+namespace gr {
+namespace rfseek {
+
+namespace {
+
+constexpr double ACQ_STEP = 2.0 * M_PI / 3.0; // 120 deg between acquisition headings
+constexpr int ACQ_HEADINGS = 6;               // twice round
+constexpr int ACQ_ROUNDS = 4;                 // rounds whose samples a retry keeps
+constexpr int ACQ_MIN_SAMPLES = 8;            // accepted samples for a 4-term fit
+constexpr double ACQ_MAX_STD = 0.25;          // rad (14 deg): the fit's bearing std
+
+class adaptive_seeker : public seeker
+{
+public:
+    explicit adaptive_seeker(const seeker_config& cfg)
+        : d_cfg(cfg), d_filter(make_outlier_filter(cfg)), d_amp(cfg.max_doppler_hz())
+    {
+        d_delta = cfg.adaptive_delta_max_rad;
+    }
+
+    const seeker_config& config() const override { return d_cfg; }
+    int stage() const override { return d_acquiring ? 1 : 2; }
+    double theta_est_rad() const override { return d_theta; }
+    std::uint64_t updates() const override { return d_updates; }
+
+    command update(const measurement& m) override
+    {
+        command c;
+        c.slot = m.slot;
+        const bool has_heading = m.has_heading && std::isfinite(m.heading_rad);
+        const bool valid = m.valid && std::isfinite(m.freq_hz) && std::isfinite(m.time_s);
+
+        if (!d_started) {
+            d_started = true;
+            d_model =
+                has_heading ? m.heading_rad : d_cfg.initial_heading_rad.value_or(0.0);
+            d_theta = world::wrap(d_cfg.initial_heading_rad.value_or(d_model));
+            d_last_cmd = d_model;
+            start_acquisition();
+        } else if (m.slot > d_last_slot + 1) {
+            d_missing += static_cast<int>(
+                std::min<std::uint64_t>(m.slot - d_last_slot - 1, 1 << 20));
+        }
+        d_last_slot = m.slot;
+        if (std::isfinite(m.time_s))
+            d_last_time = m.time_s;
+
+        // Heading at this beacon: the turn model's, unless the vehicle says otherwise.
+        double psi = d_model;
+        if (has_heading && (d_turning || std::abs(world::wrap(m.heading_rad - d_model)) >
+                                             20.0 * M_PI / 180.0))
+            psi = m.heading_rad;
+
+        if (valid) {
+            const auto r = d_filter.push(m.freq_hz, m.snr_db);
+            c.accepted = r.accepted;
+            c.filtered_freq_hz = r.value;
+            if (r.accepted && d_tag_cycle == d_cycle)
+                d_samples.push_back(doppler_sample{ psi, m.time_s, m.freq_hz });
+        }
+
+        d_missing = valid ? 0 : d_missing + 1;
+        if (d_missing >= d_cfg.hold_after_missing) {
+            // Hold course; the cycle in progress is stale.
+            if (!d_hold) {
+                d_hold = true;
+                d_hold_heading = d_acquiring ? d_last_cmd : d_theta;
+            }
+            return issue(c, d_hold_heading, -1, true);
+        }
+        if (d_hold) {
+            d_hold = false;
+            d_acquiring ? start_acquisition() : start_cycle();
+        }
+
+        if (d_pos >= static_cast<int>(d_plan.size())) {
+            const bool was_acquiring = d_acquiring;
+            c.update = d_acquiring ? finish_acquisition() : finish_cycle();
+            if (!d_acquiring)
+                start_cycle();
+            else
+                start_acquisition(was_acquiring && !c.update);
+        }
+        const double h = d_plan[d_pos++];
+        return issue(c, h, d_cycle, false);
+    }
+
+private:
+    command issue(command& c, double heading, long tag, bool holding)
+    {
+        d_tag_cycle = tag;
+        d_last_cmd = world::wrap(heading);
+        // The vehicle's heading at the next beacon (turn-rate model).
+        const double rate = d_cfg.turn_rate_rad_per_s * d_cfg.slot_period_s;
+        const double turn = world::wrap(d_last_cmd - d_model);
+        d_turning = rate > 0.0 && std::abs(turn) > rate;
+        d_model =
+            world::wrap(d_turning ? d_model + std::copysign(rate, turn) : d_last_cmd);
+        c.heading_rad = d_last_cmd;
+        c.stage = stage();
+        c.theta_est_rad = d_theta;
+        c.holding = holding;
+        return c;
+    }
+
+    void new_plan(bool keep_samples = false)
+    {
+        ++d_cycle;
+        d_pos = 0;
+        d_plan.clear();
+        if (!keep_samples) {
+            d_samples.clear();
+            d_rounds.clear();
+        }
+    }
+
+    // Three headings 120 deg apart, twice round; with a turn-rate limit, one turn at the
+    // maximum rate (its measurements all enter the fit at their own headings). A retry
+    // (the last round gave no plausible fit: deep fade, low SNR) first flies
+    // adaptive_relocate_slots straight on, so the pattern is not flown again in the same
+    // fade, and keeps the samples of the last ACQ_ROUNDS rounds.
+    void start_acquisition(bool retry = false)
+    {
+        d_acquiring = true;
+        new_plan(retry);
+        if (retry) {
+            d_rounds.push_back(d_last_time);
+            while (static_cast<int>(d_rounds.size()) > ACQ_ROUNDS) {
+                const double oldest = d_rounds.front();
+                d_rounds.erase(d_rounds.begin());
+                d_samples.erase(std::remove_if(d_samples.begin(),
+                                               d_samples.end(),
+                                               [&](const doppler_sample& s) {
+                                                   return s.time_s < oldest;
+                                               }),
+                                d_samples.end());
+            }
+            for (int i = 0; i < d_cfg.adaptive_relocate_slots; ++i)
+                d_plan.push_back(d_model);
+        }
+        d_acq_start = d_model;
+        const double rate = d_cfg.turn_rate_rad_per_s * d_cfg.slot_period_s;
+        if (rate > 0.0 && rate < ACQ_STEP) {
+            const int n = static_cast<int>(std::ceil(2.0 * M_PI / rate));
+            for (int i = 1; i <= n; ++i)
+                d_plan.push_back(d_acq_start + i * rate * (1.0 - 1e-9));
+            for (int i = 0; i < d_cfg.adaptive_acquire_slots; ++i)
+                d_plan.push_back(d_acq_start + n * rate * (1.0 - 1e-9));
+        } else {
+            for (int k = 0; k < ACQ_HEADINGS; ++k)
+                for (int i = 0; i < d_cfg.adaptive_acquire_slots; ++i)
+                    d_plan.push_back(d_acq_start + k * ACQ_STEP);
+        }
+    }
+
+    bool finish_acquisition()
+    {
+        const doppler_fit_result r = fit_doppler_full(d_samples, d_cfg.adaptive_drift);
+        // A plausible fit: enough samples, the amplitude is the known f_d,max within a
+        // third and the bearing is known to within ACQ_MAX_STD.
+        if (!r.ok || r.used < ACQ_MIN_SAMPLES || r.amplitude_hz < 0.67 * d_amp ||
+            r.amplitude_hz > 1.5 * d_amp || !(r.bearing_std_rad < ACQ_MAX_STD))
+            return false; // acquire again
+        d_theta = world::wrap(r.bearing_rad);
+        d_sigma = std::max(r.residual_rms_hz, 1e-3);
+        d_cfo = r.offset_hz;
+        d_cfo_time = mean_time();
+        d_drift = r.drift_hz_per_s;
+        d_err = d_cfg.adaptive_delta_max_rad;
+        d_acquiring = false;
+        ++d_updates;
+        return true;
+    }
+
+    // Probe half-angle: the minimum of zig-zag plus pointing cost for the measured noise,
+    // and larger while the last error was large.
+    double choose_delta() const
+    {
+        const double g = d_cfg.adaptive_gain;
+        const double n = 4.0 * d_cfg.adaptive_track_slots;
+        const double optimum =
+            std::pow(g / (2.0 - g) / n, 0.25) * std::sqrt(d_sigma / d_amp);
+        return std::clamp(std::max(optimum, std::abs(d_err)),
+                          d_cfg.adaptive_delta_min_rad,
+                          d_cfg.adaptive_delta_max_rad);
+    }
+
+    void start_cycle()
+    {
+        d_acquiring = false;
+        new_plan();
+        d_delta = choose_delta();
+        const int m = d_cfg.adaptive_track_slots;
+        for (double s : { 1.0, -1.0, -1.0, 1.0 })
+            for (int i = 0; i < m; ++i)
+                d_plan.push_back(d_theta + s * d_delta);
+    }
+
+    bool finish_cycle()
+    {
+        const int need = std::max(4, d_cfg.adaptive_track_slots);
+        if (static_cast<int>(d_samples.size()) < need)
+            return false; // too little: keep theta, probe again
+        const doppler_fit_result r =
+            fit_doppler_narrow(d_samples, d_theta, d_amp, d_cfg.adaptive_drift);
+        if (!r.ok)
+            return false;
+        const double t = mean_time();
+        const double err = std::asin(std::clamp(r.sin_error, -1.0, 1.0));
+        // Away check: the probe mean is the CFO + A (cos(theta~) cos(delta) - 1)-ish; far
+        // below the tracked CFO means the emitter is behind.
+        const double cfo_pred = d_cfo + d_drift * (t - d_cfo_time);
+        const double level = r.offset_hz + d_amp * (1.0 - std::cos(err));
+        if (level - cfo_pred < -d_amp || std::abs(err) > d_cfg.adaptive_reacquire_rad ||
+            std::abs(r.sin_error) > 1.0) {
+            d_acquiring = true;
+            return false;
+        }
+        d_cfo = level;
+        d_cfo_time = t;
+        if (d_cfg.adaptive_drift)
+            d_drift = 0.5 * d_drift + 0.5 * r.drift_hz_per_s;
+        d_sigma = 0.7 * d_sigma + 0.3 * std::max(r.residual_rms_hz, 1e-3);
+        d_err = err;
+        d_theta = world::wrap(d_theta + d_cfg.adaptive_gain * err);
+        ++d_updates;
+        return true;
+    }
+
+    double mean_time() const
+    {
+        double t = 0.0;
+        for (const auto& s : d_samples)
+            t += s.time_s;
+        return d_samples.empty() ? 0.0 : t / d_samples.size();
+    }
+
+    seeker_config d_cfg;
+    outlier_filter d_filter;
+    const double d_amp; // f_d,max
+    bool d_started = false, d_acquiring = true, d_hold = false, d_turning = false;
+    double d_theta = 0.0, d_model = 0.0, d_last_cmd = 0.0, d_hold_heading = 0.0;
+    double d_acq_start = 0.0, d_delta = 0.0, d_err = 0.0;
+    double d_sigma = 1.0, d_cfo = 0.0, d_cfo_time = 0.0, d_drift = 0.0, d_last_time = 0.0;
+    std::vector<double> d_rounds; // start times of the kept acquisition rounds
+    std::uint64_t d_last_slot = 0, d_updates = 0;
+    int d_missing = 0, d_pos = 0;
+    long d_cycle = 0, d_tag_cycle = -1;
+    std::vector<double> d_plan;
+    std::vector<doppler_sample> d_samples;
+};
+
+} // namespace
+
+std::unique_ptr<seeker> make_adaptive_seeker(const seeker_config& cfg)
+{
+    return std::make_unique<adaptive_seeker>(cfg);
+}
+
+} // namespace rfseek
+} // namespace gr

@@ -1,0 +1,40 @@
+/* -*- c++ -*- */
+/*
+ * Copyright 2026 gr-rfseek authors.
+ * SPDX-License-Identifier: GPL-3.0-or-later
+ *
+ * strategies: the constructors behind seeker::make, one strategy per file:
+ *   two_stage_seeker.cc   paper, paper_no_circle (the paper's Stage 1 circle, Stage 2 eq.
+ * 5) rss_seeker.cc         rss_baseline (received power only, after Wadhwa et al.)
+ *   adaptive_seeker.cc    adaptive (ours: model-inverting probes, not in the paper)
+ * Internal to the library.
+ */
+
+#ifndef INCLUDED_RFSEEK_STRATEGIES_H
+#define INCLUDED_RFSEEK_STRATEGIES_H
+
+#include "outlier_filter.h"
+#include <gr-rfseek/seeker.h>
+#include <memory>
+
+namespace gr {
+namespace rfseek {
+
+std::unique_ptr<seeker> make_two_stage_seeker(const seeker_config& cfg);
+std::unique_ptr<seeker> make_rss_seeker(const seeker_config& cfg);
+std::unique_ptr<seeker> make_adaptive_seeker(const seeker_config& cfg);
+
+//! The eq. 4 filter as a strategy's configuration asks for it.
+inline outlier_filter make_outlier_filter(const seeker_config& cfg)
+{
+    return outlier_filter(cfg.effective_outlier_threshold_hz(),
+                          cfg.literal_eq4,
+                          cfg.lock_count,
+                          cfg.relock_count,
+                          cfg.min_snr_db);
+}
+
+} // namespace rfseek
+} // namespace gr
+
+#endif /* INCLUDED_RFSEEK_STRATEGIES_H */

@@ -30,11 +30,11 @@ def meas(slot, freq, valid=True, heading=None):
 class qa_closed_loop(gr_unittest.TestCase):
 
     def test_flowgraph_equals_core_simulation(self):
-        for seed in (3, 8):
+        for seed, strategy in ((3, "paper"), (8, "paper"), (3, "adaptive"), (5, "adaptive")):
             sc = rfseek.scenario(seed=seed)
-            tb = flowgraphs.closed_loop(sc, "paper")
+            tb = flowgraphs.closed_loop(sc, strategy)
             tb.run()
-            core = rfseek.simulation(sc, rfseek.simulation.seeker_for(sc, "paper")).run()
+            core = rfseek.simulation(sc, rfseek.simulation.seeker_for(sc, strategy)).run()
             c = core.columns()
             states = tb.collector.states
             tel = tb.collector.telemetry
@@ -44,8 +44,9 @@ class qa_closed_loop(gr_unittest.TestCase):
             x = np.array([s["x"] for s in states[:n]])
             y = np.array([s["y"] for s in states[:n]])
             h = np.array([t["heading"] for t in tel])
-            self.assertTrue(np.array_equal(x, c["x_m"]), "seed %d: x differs" % seed)
-            self.assertTrue(np.array_equal(y, c["y_m"]), "seed %d: y differs" % seed)
+            what = "%s seed %d" % (strategy, seed)
+            self.assertTrue(np.array_equal(x, c["x_m"]), what + ": x differs")
+            self.assertTrue(np.array_equal(y, c["y_m"]), what + ": y differs")
             self.assertTrue(np.array_equal(h, c["cmd_heading_rad"]))
             self.assertEqual([t["stage"] for t in tel], list(c["stage"].astype(int)))
             self.assertTrue(states[-1]["arrived"])
@@ -54,7 +55,8 @@ class qa_closed_loop(gr_unittest.TestCase):
 
     def test_grc_example_flies_the_core_trajectory(self):
         # examples/seek_sim.grc, compiled by grcc and run headless (offscreen Qt), gives the
-        # core simulation's trajectory for its seed.
+        # core simulation's trajectory for its seed, for the default strategy and for the
+        # one given by its "strategy" parameter (as --strategy on its command line).
         source = os.environ.get("RFSEEK_SOURCE_DIR",
                                 os.path.join(os.path.dirname(__file__), "..", ".."))
         out = tempfile.mkdtemp(prefix="rfseek_grc_")
@@ -68,19 +70,25 @@ class qa_closed_loop(gr_unittest.TestCase):
         os.environ.setdefault("QT_QPA_PLATFORM", "offscreen")
         from PyQt5 import Qt
         app = Qt.QApplication.instance() or Qt.QApplication([])
-        tb = mod.seek_sim()
-        col = flowgraphs.collector()
-        tb.msg_connect(tb.channel, "state", col, "state")
-        tb.start()
-        tb.wait()
-        sc = tb.channel.config()
-        core = rfseek.simulation(sc, rfseek.simulation.seeker_for(sc, "paper")).run()
-        c = core.columns()
-        n = len(c["x_m"])
-        self.assertEqual(len(col.states), n + 1)
-        self.assertTrue(np.array_equal(np.array([s["x"] for s in col.states[:n]]), c["x_m"]))
-        self.assertTrue(np.array_equal(np.array([s["y"] for s in col.states[:n]]), c["y_m"]))
-        self.assertTrue(col.states[-1]["arrived"])
+        for strategy in (None, "adaptive"):
+            tb = mod.seek_sim() if strategy is None else mod.seek_sim(strategy=strategy)
+            self.assertEqual(tb.controller.config().strategy, strategy or "paper")
+            col = flowgraphs.collector()
+            tb.msg_connect(tb.channel, "state", col, "state")
+            tb.start()
+            tb.wait()
+            sc = tb.channel.config()
+            core = rfseek.simulation(
+                sc, rfseek.simulation.seeker_for(sc, strategy or "paper")).run()
+            c = core.columns()
+            n = len(c["x_m"])
+            self.assertEqual(len(col.states), n + 1)
+            self.assertTrue(np.array_equal(np.array([s["x"] for s in col.states[:n]]),
+                                           c["x_m"]))
+            self.assertTrue(np.array_equal(np.array([s["y"] for s in col.states[:n]]),
+                                           c["y_m"]))
+            self.assertTrue(col.states[-1]["arrived"])
+            del tb
         del app
 
     def test_invalid_and_malformed_messages(self):

@@ -42,10 +42,9 @@ flown to reach the success radius, per strategy, on the same seeds.
   --out FILE.json       results (default montecarlo.json); rows also in FILE.csv
   --csv FILE.csv        where to write the rows (default: --out with .csv)
   --set KEY=VALUE       a scenario field (any of scenario.keys(), e.g. snr_db=-5),
-                        a seeker constant (delta_deg, delta_rad, m_slots, circle_radius_m,
-                        moving_average_len, outlier_threshold_hz, literal_eq4,
-                        relock_count, hold_after_missing, rss_run_slots, rss_good_ratio,
-                        rss_reverse_db, rss_min_runs) or an estimator setting
+                        a seeker constant (any of seeker_config.keys(), e.g. delta_deg,
+                        m_slots, lock_count, min_snr_db, stage1_fit, adaptive_gain,
+                        adaptive_track_slots, adaptive_delta_min_deg) or an estimator setting
                         (interpolator, window, min_freq_hz, max_freq_hz); repeatable
   --scenario FILE       KEY=VALUE lines (# comments) or a flat JSON object, as --set
   --preset P[,Q...]     named scenario variants (the study is repeated for each;

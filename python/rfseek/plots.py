@@ -219,3 +219,47 @@ def sweep_plot(result, path=None):
     if path:
         fig.savefig(path, dpi=110)
     return fig
+
+
+def preset_plot(result, path=None, ymax=1.6):
+    """Strategies compared across presets (rfseek-montecarlo --preset A,B,...): mean ratio
+    (bars) and p90 (ticks) above, success rate below. Bars beyond ymax are cut and
+    labelled with their value."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    presets = [p["preset"] for p in result["points"]]
+    names = [s for s in result["strategies"]]
+    fig, (a1, a2) = plt.subplots(2, 1, figsize=(max(7, 1.1 * len(presets) + 2), 6.5),
+                                 sharex=True, gridspec_kw={"height_ratios": [2, 1]})
+    x = np.arange(len(presets))
+    w = 0.8 / max(1, len(names))
+    for k, name in enumerate(names):
+        xs = x + (k - (len(names) - 1) / 2) * w
+        mean = np.array([p[name]["mean_ratio"] for p in result["points"]])
+        p90 = np.array([p[name]["p90_ratio"] for p in result["points"]])
+        ok = np.array([100 * p[name]["success_rate"] for p in result["points"]])
+        bars = a1.bar(xs, np.minimum(mean, ymax) - 1.0, w, bottom=1.0, label=name)
+        color = bars.patches[0].get_facecolor()
+        a1.plot(xs, np.minimum(p90, ymax), "_", color="k", ms=8,
+                label="p90" if k == len(names) - 1 else None)
+        for xi, m in zip(xs, mean):
+            if m > ymax:
+                a1.text(xi, ymax - 0.02, "%.2f" % m, rotation=90, ha="center", va="top",
+                        fontsize=7, color="white")
+        a2.bar(xs, ok, w, color=color)
+    a1.set_ylim(1.0, ymax)
+    a1.set_ylabel("distance / shortest path")
+    a1.set_title("strategies across presets, %d runs each (mean: bar, p90: tick)"
+                 % result["runs"], fontsize=10)
+    a1.legend(fontsize=8, ncol=len(names) + 1)
+    a1.grid(axis="y", alpha=0.3)
+    a2.set_ylabel("success (%)")
+    a2.set_ylim(0, 105)
+    a2.grid(axis="y", alpha=0.3)
+    a2.set_xticks(x)
+    a2.set_xticklabels(presets, rotation=20)
+    fig.tight_layout()
+    if path:
+        fig.savefig(path, dpi=110)
+    return fig

@@ -112,6 +112,50 @@ class qa_montecarlo(gr_unittest.TestCase):
                               capture_output=True, text=True)
         self.assertEqual(plot.returncode, 0, plot.stderr)
 
+    def test_presets(self):
+        from gnuradio import rfseek
+        p = subprocess.run([MC, "--preset", "list"], capture_output=True, text=True)
+        self.assertEqual(p.returncode, 0, p.stderr)
+        for name in rfseek.scenario.presets():
+            self.assertIn(name, p.stdout)
+        # Each preset's overrides reach the runs; --set applies on top of them.
+        p, out = run_mc(self.tmp, "pr", "--runs", "2", "--strategy", "adaptive,paper",
+                        "--preset", "drift10,speed20", "--set", "snr_db=3", *SHORT)
+        self.assertEqual(p.returncode, 0, p.stderr)
+        res = json.load(open(out))
+        self.assertEqual(res["presets"]["names"], ["drift10", "speed20"])
+        sc = res["presets"]["scenarios"]
+        self.assertEqual(sc["drift10"]["cfo_drift_hz_per_s"], 10)
+        self.assertEqual(sc["speed20"]["speed_mps"], 20)
+        for name in ("drift10", "speed20"):
+            self.assertEqual(sc[name]["snr_db"], 3)
+            self.assertEqual(sc[name]["initial_distance_m"], 2000)
+        self.assertEqual([q["preset"] for q in res["points"]], ["drift10", "speed20"])
+        self.assertEqual(len(res["rows"]), 2 * 2 * 2)
+        for q in res["points"]:
+            for strategy in ("adaptive", "paper"):
+                rows = [r for r in res["rows"]
+                        if r["preset"] == q["preset"] and r["strategy"] == strategy]
+                self.assertEqual(sorted(r["seed"] for r in rows), [1, 2])
+                self.assertAlmostEqual(q[strategy]["mean_ratio"],
+                                       statistics.mean(r["ratio"] for r in rows), places=6)
+        # At 20 m/s the flight takes half the time of 10 m/s for the same distance.
+        r20 = [r for r in res["rows"] if r["preset"] == "speed20"]
+        for r in r20:
+            self.assertAlmostEqual(r["time_s"], r["distance_m"] / 20.0, places=6)
+        rows_csv = list(csv.DictReader(open(out[:-5] + ".csv")))
+        self.assertEqual(sorted(set(r["preset"] for r in rows_csv)), ["drift10", "speed20"])
+        plot = subprocess.run([sys.executable, os.path.join(SOURCE, "apps",
+                                                            "rfseek-plot-montecarlo"),
+                               out, "--table"], capture_output=True, text=True)
+        self.assertEqual(plot.returncode, 0, plot.stderr)
+        self.assertTrue(os.path.getsize(os.path.join(self.tmp, "pr_presets.png")) > 1000)
+        self.assertIn("| drift10 |", plot.stdout)
+        # An unknown preset is refused by name.
+        p, _ = run_mc(self.tmp, "bad", "--preset", "reference,windy")
+        self.assertEqual(p.returncode, 2)
+        self.assertIn("windy", p.stderr)
+
     def test_bad_options_exit_2_with_a_message(self):
         for args, word in ((["--runs", "0"], "--runs"),
                            (["--strategy", "gradient"], "gradient"),

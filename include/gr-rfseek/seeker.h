@@ -65,7 +65,7 @@ struct RFSEEK_API seeker_config {
     int adaptive_acquire_slots = 3; //!< slots per acquisition heading (120 deg apart)
     //! Slots flown straight on before an acquisition is retried (out of a fade).
     int adaptive_relocate_slots = 20;
-    int adaptive_track_slots = 10; //!< slots per probe segment (4 segments per cycle)
+    int adaptive_track_slots = 20; //!< slots per probe segment (4 segments per cycle)
     double adaptive_gain = 0.5;    //!< fraction of the estimated error removed per cycle
     double adaptive_delta_min_rad = 0.03490658503988659; //!< 2 deg
     double adaptive_delta_max_rad = 0.3490658503988659;  //!< 20 deg

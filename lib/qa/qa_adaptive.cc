@@ -100,6 +100,34 @@ TEST(adaptive, converges_from_any_heading_without_noise)
     }
 }
 
+TEST(adaptive, each_probe_cycle_removes_gain_times_the_error)
+{
+    // The model-inverting gain: after a 30 deg bearing change (within
+    // adaptive_reacquire_rad, so tracking handles it), each probe cycle measures the
+    // whole error and removes adaptive_gain of it (eq. 5 would remove about 6 %).
+    model_loop L(adaptive(), 0.0);
+    L.beta = 0.5;
+    ASSERT_LT(L.run(600, 50), 0.1 * DEG);
+    while (!L.step().update) // change the bearing between two cycles
+        ;
+    L.beta += 30.0 * DEG;
+    std::vector<double> errs;
+    for (int i = 0; i < 2000 && errs.size() < 4; ++i) {
+        const command c = L.step();
+        EXPECT_EQ(c.stage, 2);
+        if (c.update)
+            errs.push_back(world::wrap(c.theta_est_rad - L.beta));
+    }
+    ASSERT_EQ(errs.size(), 4u);
+    // From 30 deg the error shrinks by (1 - g) per cycle.
+    const double g = L.cfg.adaptive_gain;
+    EXPECT_NEAR(std::abs(errs[0]), (1.0 - g) * 30.0 * DEG, 0.5 * DEG);
+    for (std::size_t k = 1; k < errs.size(); ++k)
+        EXPECT_NEAR(errs[k], (1.0 - g) * errs[k - 1], 0.05 * std::abs(errs[k - 1]) + 1e-4)
+            << "cycle " << k;
+    EXPECT_LT(std::abs(errs[3]), 2.0 * DEG);
+}
+
 TEST(adaptive, resolves_flying_away_after_the_emitter_moves_behind)
 {
     for (double jump_deg : { 180.0, 120.0, -100.0 }) {

@@ -4,7 +4,7 @@
  */
 
 /* BINDTOOL_HEADER_FILE(seeker.h) */
-/* BINDTOOL_HEADER_FILE_HASH(a9874a32f7bf266ed42c787ea975a5a1) */
+/* BINDTOOL_HEADER_FILE_HASH(3092b6cdee65c5c504f495ccb74a22e5) */
 
 #include "kwargs.h"
 #include <gr-rfseek/seeker.h>

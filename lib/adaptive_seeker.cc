@@ -10,7 +10,9 @@
  * - Acquisition: fly three headings 120 deg apart twice round (adaptive_acquire_slots
  *   each; with a turn-rate limit, one full turn at the maximum rate) and fit
  *   f = a cos psi + b sin psi + c + d t (doppler_fit): the whole circle of bearings,
- *   "flying away" included, and a linear CFO drift, in a few slots.
+ *   "flying away" included, and a linear CFO drift, in a few slots. An implausible fit
+ *   (few samples, wrong amplitude, loose bearing) is retried after
+ *   adaptive_relocate_slots straight on, out of the fade, keeping recent samples.
  * - Tracking: probe cycles +delta, -delta, -delta, +delta (adaptive_track_slots each).
  * The palindromic order makes a linear CFO drift orthogonal to the probe difference, and
  *   the fit has a drift term too. The fit inverts the model (asin of the normalised

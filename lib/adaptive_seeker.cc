@@ -155,8 +155,9 @@ private:
     // Three headings 120 deg apart, twice round; with a turn-rate limit, one turn at the
     // maximum rate (its measurements all enter the fit at their own headings). A retry
     // (the last round gave no plausible fit: deep fade, low SNR) first flies
-    // adaptive_relocate_slots straight on, so the pattern is not flown again in the same
-    // fade, and keeps the samples of the last ACQ_ROUNDS rounds.
+    // adaptive_relocate_slots straight on, on the first round's heading, so the pattern
+    // is not flown again in the same fade, and keeps the samples of the last ACQ_ROUNDS
+    // rounds.
     void start_acquisition(bool retry = false)
     {
         d_acquiring = true;
@@ -173,10 +174,14 @@ private:
                                                }),
                                 d_samples.end());
             }
+            // Always the same way (the heading the first round started on): legs on the
+            // pattern's last heading would close a triangle back into the same fade.
             for (int i = 0; i < d_cfg.adaptive_relocate_slots; ++i)
-                d_plan.push_back(d_model);
+                d_plan.push_back(d_acq_origin);
+        } else {
+            d_acq_origin = d_model;
         }
-        d_acq_start = d_model;
+        d_acq_start = retry ? d_acq_origin : d_model;
         const double rate = d_cfg.turn_rate_rad_per_s * d_cfg.slot_period_s;
         if (rate > 0.0 && rate < ACQ_STEP) {
             const int n = static_cast<int>(std::ceil(2.0 * M_PI / rate));
@@ -278,7 +283,7 @@ private:
     const double d_amp; // f_d,max
     bool d_started = false, d_acquiring = true, d_hold = false, d_turning = false;
     double d_theta = 0.0, d_model = 0.0, d_last_cmd = 0.0, d_hold_heading = 0.0;
-    double d_acq_start = 0.0, d_delta = 0.0, d_err = 0.0;
+    double d_acq_start = 0.0, d_acq_origin = 0.0, d_delta = 0.0, d_err = 0.0;
     double d_sigma = 1.0, d_cfo = 0.0, d_cfo_time = 0.0, d_drift = 0.0, d_last_time = 0.0;
     std::vector<double> d_rounds; // start times of the kept acquisition rounds
     std::uint64_t d_last_slot = 0, d_updates = 0;

@@ -170,6 +170,38 @@ TEST(adaptive, turn_limited_vehicle_converges)
     EXPECT_GT(L.turning_slots, 0);
 }
 
+TEST(adaptive, acquisition_retries_move_out_of_a_fade)
+{
+    // No usable signal (noise peaks all over the band: eq. 4 never locks): every round
+    // fails, and the retries must carry the vehicle away along one line, not round a
+    // closed triangle in the same fade (issue 9: runs stuck at -22 dB).
+    seeker_config c = adaptive();
+    auto sk = seeker::make(c);
+    double x = 0.0, y = 0.0, h = 0.7;
+    const double step = c.speed_mps * c.slot_period_s;
+    std::uint64_t state = 12345;
+    for (std::uint64_t slot = 0; slot < 400; ++slot) {
+        state = state * 6364136223846793005ULL + 1442695040888963407ULL;
+        measurement m;
+        m.slot = slot;
+        m.time_s = slot * c.slot_period_s;
+        m.freq_hz =
+            -5.0e4 + 1.0e5 * static_cast<double>(state >> 11) / 9007199254740992.0;
+        m.valid = true;
+        m.has_heading = true;
+        m.heading_rad = h;
+        const command cmd = sk->update(m);
+        EXPECT_EQ(cmd.stage, 1);
+        h = cmd.heading_rad;
+        x += step * std::cos(h);
+        y += step * std::sin(h);
+    }
+    // 400 slots = about 10 rounds of 18 pattern + 20 relocation slots: 9 legs of 10 m
+    // along the first heading (the patterns themselves close on themselves).
+    const double along = x * std::cos(0.7) + y * std::sin(0.7);
+    EXPECT_GT(along, 0.8 * 9 * c.adaptive_relocate_slots * step);
+}
+
 TEST(adaptive, invalid_measurements_hold_then_recover)
 {
     model_loop L(adaptive(), 0.0);

@@ -251,8 +251,10 @@ def preset_plot(result, path=None, ymax=1.6):
     a1.set_ylim(1.0, ymax)
     a1.set_ylabel("distance / shortest path")
     a1.set_title("strategies across presets, %d runs each (mean: bar, p90: tick)"
-                 % result["runs"], fontsize=10)
-    a1.legend(fontsize=8, ncol=len(names) + 1)
+                 % result["runs"], fontsize=10, pad=24)
+    # above the axes: inside, it would hide the labels of bars cut at the top
+    a1.legend(fontsize=8, ncol=len(names) + 1, loc="lower center",
+              bbox_to_anchor=(0.5, 1.0), frameon=False)
     a1.grid(axis="y", alpha=0.3)
     a2.set_ylabel("success (%)")
     a2.set_ylim(0, 105)

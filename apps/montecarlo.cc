@@ -4,12 +4,18 @@
  *
  * rfseek-montecarlo: the paper's Monte Carlo study (Sec. V) on the core simulation, the
  * very code the blocks run: every beacon synthesised and FFT'd. Several strategies run on
- * the same seeds; results do not depend on the thread count (run i uses scenario seed
- * S + i, and rows are written in run order).
+ * the same seeds; results do not depend on the thread count nor on the backend (run i
+ * uses scenario seed S + i; every row is computed by study_point::run, here in threads
+ * or in Dask workers through the bindings). Rows are appended to the CSV as they finish,
+ * so an interrupted study can be resumed (--resume); the finished CSV and the JSON are
+ * in run order.
  */
 
 #include <fftw3.h>
 #include <gr-rfseek/simulation.h>
+#include <gr-rfseek/study.h>
+#include <sys/wait.h>
+#include <unistd.h>
 #include <algorithm>
 #include <atomic>
 #include <chrono>
@@ -18,6 +24,7 @@
 #include <cstdlib>
 #include <fstream>
 #include <iostream>
+#include <memory>
 #include <mutex>
 #include <sstream>
 #include <stdexcept>
@@ -50,22 +57,20 @@ flown to reach the success radius, per strategy, on the same seeds.
   --preset P[,Q...]     named scenario variants (the study is repeated for each;
                         --set values apply on top); --preset list shows them
   --sweep KEY=V1,V2,..  repeat the study for each value of one --set key
+  --resume              keep the rows already in the CSV (same study: same --set,
+                        --preset, --sweep), run only the missing ones, then write the
+                        JSON summary of the whole CSV
+  --scheduler ADDR      run on an existing Dask cluster (e.g. tcp://host:8786) instead
+                        of threads; workers need gr-rfseek installed (docs/results.md)
+  --dask-local N        start a Dask LocalCluster of N worker processes here
+  --dask-chunk K        runs per Dask task (default: about 4 tasks per worker, <= 50)
+  --dask-timeout S      seconds to reach the scheduler (default 10)
+  --python PATH         interpreter of the Dask backend (default /usr/bin/python3)
   --quiet               no progress bar
   --help
 )";
 
-struct settings {
-    scenario sc;
-    std::vector<std::pair<std::string, std::string>> seeker_sets;
-    estimator_config est;
-    std::vector<std::pair<std::string, std::string>> given; // --set/--scenario, in order
-};
-
-bool is_seeker_key(const std::string& k)
-{
-    const auto keys = seeker_config::keys();
-    return std::find(keys.begin(), keys.end(), k) != keys.end();
-}
+using kv_list = study_point::kv_list;
 
 double num(const std::string& key, const std::string& v)
 {
@@ -76,30 +81,6 @@ double num(const std::string& key, const std::string& v)
     return d;
 }
 
-void apply(settings& s, const std::string& key, const std::string& value)
-{
-    const auto sk = scenario::keys();
-    if (std::find(sk.begin(), sk.end(), key) != sk.end())
-        s.sc.set(key, value); // the scenario's fields feed the seeker via seeker_for()
-    else if (is_seeker_key(key)) {
-        seeker_config probe;
-        probe.set(key, value); // parse now, fail before the long run
-        s.seeker_sets.emplace_back(key, value);
-    } else if (key == "interpolator")
-        s.est.interpolator = value;
-    else if (key == "window")
-        s.est.window = value;
-    else if (key == "min_freq_hz")
-        s.est.min_freq_hz = num(key, value);
-    else if (key == "max_freq_hz")
-        s.est.max_freq_hz = num(key, value);
-    else
-        throw std::invalid_argument(
-            "unknown parameter '" + key +
-            "' (a scenario field, a seeker constant or an estimator "
-            "setting; see --help)");
-}
-
 std::string trim(std::string s)
 {
     const auto a = s.find_first_not_of(" \t\r\n\"");
@@ -107,7 +88,9 @@ std::string trim(std::string s)
     return a == std::string::npos ? "" : s.substr(a, b - a + 1);
 }
 
-void apply_kv(settings& s, const std::string& kv, const char sep)
+// --set / --scenario KEY=VALUE: checked now (a study_point of it throws for an unknown
+// key or an unparsable value), applied in order per study point.
+void apply_kv(kv_list& given, const std::string& kv, const char sep)
 {
     const auto p = kv.find(sep);
     if (p == std::string::npos)
@@ -116,11 +99,12 @@ void apply_kv(settings& s, const std::string& kv, const char sep)
     std::string v = trim(kv.substr(p + 1));
     if (v == "null")
         v = "none";
-    apply(s, trim(kv.substr(0, p)), v);
-    s.given.emplace_back(trim(kv.substr(0, p)), v);
+    const std::string k = trim(kv.substr(0, p));
+    study_point("", { { k, v } }); // fail before the long run
+    given.emplace_back(k, v);
 }
 
-void load_file(settings& s, const std::string& path)
+void load_file(kv_list& given, const std::string& path)
 {
     std::ifstream f(path);
     if (!f)
@@ -134,7 +118,7 @@ void load_file(settings& s, const std::string& path)
         std::string item;
         while (std::getline(items, item, ','))
             if (!trim(item).empty())
-                apply_kv(s, item, ':');
+                apply_kv(given, item, ':');
         return;
     }
     std::stringstream lines(text);
@@ -142,42 +126,24 @@ void load_file(settings& s, const std::string& path)
     while (std::getline(lines, line)) {
         line = trim(line.substr(0, line.find('#')));
         if (!line.empty())
-            apply_kv(s, line, '=');
+            apply_kv(given, line, '=');
     }
 }
 
+// One row of the study, as written to the CSV (numbers rounded as printed, so a summary
+// rebuilt from the CSV by --resume equals one computed in memory).
 struct row {
+    bool done = false;
     std::string strategy;
     std::uint64_t seed = 0;
     std::size_t point = 0;
-    run_summary r;
+    double distance_m = 0, ratio = 0, time_s = 0;
+    bool success = false;
+    std::uint64_t slots = 0;
+    bool has_stage1 = false;
+    double stage1_deg = 0;
+    std::string error; // non-empty: the run raised; not in the statistics
 };
-
-// One point of the study: a preset (or none) and a sweep value (or none), with the
-// settings it runs: the preset first, then the given --set/--scenario values, then the
-// sweep value.
-struct study_point {
-    std::string preset;
-    std::string sweep_value;
-    settings s;
-};
-
-study_point make_point(const settings& given,
-                       const std::string& preset,
-                       const std::string& sweep_key,
-                       const std::string& sweep_value)
-{
-    study_point p{ preset, sweep_value, settings{} };
-    if (!preset.empty())
-        p.s.sc.apply_preset(preset);
-    for (const auto& kv : given.given)
-        apply(p.s, kv.first, kv.second);
-    if (!sweep_key.empty())
-        apply(p.s, sweep_key, sweep_value);
-    p.s.given = given.given;
-    return p;
-}
-
 std::string preset_list()
 {
     std::string o = "presets (rfseek-montecarlo --preset NAME[,NAME...]):\n";
@@ -230,40 +196,6 @@ std::string jstr(const std::string& s)
     return o + "\"";
 }
 
-std::string summary_json(const std::vector<const row*>& rows, double shortest)
-{
-    std::vector<double> d, ratio, s1;
-    int success = 0;
-    double t = 0.0;
-    for (const row* r : rows) {
-        d.push_back(r->r.distance_m);
-        ratio.push_back(r->r.ratio);
-        success += r->r.success;
-        t += r->r.time_s;
-        if (r->r.has_stage1)
-            s1.push_back(std::abs(r->r.stage1_heading_error_rad) * 180.0 / M_PI);
-    }
-    double md = 0, mr = 0;
-    for (std::size_t i = 0; i < d.size(); ++i) {
-        md += d[i];
-        mr += ratio[i];
-    }
-    const double n = std::max<std::size_t>(rows.size(), 1);
-    std::ostringstream o;
-    o << "{\"runs\": " << rows.size() << ", \"success_rate\": " << jnum(success / n)
-      << ", \"mean_distance_m\": " << jnum(md / n)
-      << ", \"median_distance_m\": " << jnum(percentile(d, 0.5))
-      << ", \"p90_distance_m\": " << jnum(percentile(d, 0.9))
-      << ", \"mean_ratio\": " << jnum(mr / n)
-      << ", \"median_ratio\": " << jnum(percentile(ratio, 0.5))
-      << ", \"p90_ratio\": " << jnum(percentile(ratio, 0.9))
-      << ", \"shortest_path_m\": " << jnum(shortest)
-      << ", \"mean_time_s\": " << jnum(t / n)
-      << ", \"stage1_abs_error_deg_median\": " << jnum(percentile(s1, 0.5))
-      << ", \"stage1_abs_error_deg_p90\": " << jnum(percentile(s1, 0.9)) << "}";
-    return o.str();
-}
-
 std::vector<std::string> split(const std::string& s, char sep)
 {
     std::vector<std::string> out;
@@ -295,6 +227,316 @@ double fftw_floor_us(int n)
     return us;
 }
 
+// Statistics over the rows that ran (error rows are counted apart).
+std::string summary_json(const std::vector<const row*>& rows, double shortest)
+{
+    std::vector<double> d, ratio, s1;
+    int success = 0, errors = 0;
+    double t = 0.0;
+    for (const row* r : rows) {
+        if (!r->error.empty()) {
+            ++errors;
+            continue;
+        }
+        d.push_back(r->distance_m);
+        ratio.push_back(r->ratio);
+        success += r->success;
+        t += r->time_s;
+        if (r->has_stage1)
+            s1.push_back(std::abs(r->stage1_deg));
+    }
+    double md = 0, mr = 0;
+    for (std::size_t i = 0; i < d.size(); ++i) {
+        md += d[i];
+        mr += ratio[i];
+    }
+    const double n = std::max<std::size_t>(d.size(), 1);
+    std::ostringstream o;
+    o << "{\"runs\": " << d.size() << ", \"errors\": " << errors
+      << ", \"success_rate\": " << jnum(success / n)
+      << ", \"mean_distance_m\": " << jnum(md / n)
+      << ", \"median_distance_m\": " << jnum(percentile(d, 0.5))
+      << ", \"p90_distance_m\": " << jnum(percentile(d, 0.9))
+      << ", \"mean_ratio\": " << jnum(mr / n)
+      << ", \"median_ratio\": " << jnum(percentile(ratio, 0.5))
+      << ", \"p90_ratio\": " << jnum(percentile(ratio, 0.9))
+      << ", \"shortest_path_m\": " << jnum(shortest)
+      << ", \"mean_time_s\": " << jnum(t / n)
+      << ", \"stage1_abs_error_deg_median\": " << jnum(percentile(s1, 0.5))
+      << ", \"stage1_abs_error_deg_p90\": " << jnum(percentile(s1, 0.9)) << "}";
+    return o.str();
+}
+
+// A number as the CSV and the JSON print it.
+double printed(double v)
+{
+    return std::isfinite(v) ? std::strtod(jnum(v).c_str(), nullptr) : v;
+}
+
+void fill(row& r, const run_summary& s)
+{
+    r.distance_m = printed(s.distance_m);
+    r.ratio = printed(s.ratio);
+    r.time_s = printed(s.time_s);
+    r.success = s.success;
+    r.slots = s.slots;
+    r.has_stage1 = s.has_stage1;
+    r.stage1_deg =
+        s.has_stage1 ? printed(s.stage1_heading_error_rad * 180.0 / M_PI) : 0.0;
+    r.error.clear();
+    r.done = true;
+}
+
+std::string one_line(std::string s)
+{
+    for (char& c : s)
+        if (c == '\n' || c == '\r' || c == ',' || c == '"')
+            c = c == ',' ? ';' : ' ';
+    return s;
+}
+
+struct csv_layout {
+    bool by_preset = false, by_sweep = false;
+    std::string header() const
+    {
+        return std::string("seed,strategy") + (by_preset ? ",preset" : "") +
+               (by_sweep ? ",sweep_value" : "") +
+               ",distance_m,ratio,time_s,success,slots,stage1_heading_error_deg,error";
+    }
+    std::string line(const row& r, const std::vector<study_point>& points) const
+    {
+        std::ostringstream c;
+        c << r.seed << "," << r.strategy;
+        if (by_preset)
+            c << "," << points[r.point].preset();
+        if (by_sweep)
+            c << "," << points[r.point].sweep_value();
+        if (r.error.empty())
+            c << "," << jnum(r.distance_m) << "," << jnum(r.ratio) << ","
+              << jnum(r.time_s) << "," << (r.success ? 1 : 0) << "," << r.slots << ","
+              << (r.has_stage1 ? jnum(r.stage1_deg) : "") << ",";
+        else
+            c << ",,,,,,," << one_line(r.error);
+        return c.str() + "\n";
+    }
+};
+
+// Everything that decides a study's rows, but --runs and the strategies: written beside
+// the CSV so that --resume refuses to mix rows of different studies.
+std::string fingerprint(const std::vector<study_point>& points, std::uint64_t seed)
+{
+    std::ostringstream o;
+    o << "rfseek-montecarlo study; seed " << seed << "\n";
+    for (const auto& p : points) {
+        o << "point preset=" << p.preset() << " sweep=" << p.sweep_key() << "="
+          << p.sweep_value() << "\n  scenario " << p.scenario_config().to_json()
+          << "\n  seeker";
+        for (const auto& kv : p.seeker_sets())
+            o << " " << kv.first << "=" << kv.second;
+        const auto& e = p.estimator();
+        o << "\n  estimator " << e.window << " " << e.interpolator << " "
+          << jnum(e.min_freq_hz) << " " << jnum(e.max_freq_hz) << "\n";
+    }
+    return o.str();
+}
+
+std::string read_file(const std::string& path)
+{
+    std::ifstream f(path);
+    std::stringstream ss;
+    ss << f.rdbuf();
+    return ss.str();
+}
+
+// Write-then-rename, so that a reader (or a kill) never sees half a file.
+void write_atomically(const std::string& path, const std::string& text)
+{
+    const std::string tmp = path + ".tmp";
+    {
+        std::ofstream f(tmp);
+        if (!(f << text) || !f.flush())
+            throw std::runtime_error("cannot write " + tmp);
+    }
+    if (std::rename(tmp.c_str(), path.c_str()) != 0)
+        throw std::runtime_error("cannot rename " + tmp + " to " + path);
+}
+
+struct study_index {
+    std::vector<study_point>* points;
+    std::vector<std::string> strategies;
+    std::uint64_t seed;
+    int runs;
+    std::size_t job(std::size_t point, std::size_t strategy, std::size_t run) const
+    {
+        return (point * strategies.size() + strategy) * runs + run;
+    }
+};
+
+// --resume: the rows of the CSV that belong to this study (malformed or truncated lines,
+// e.g. the one a kill cut, are dropped and counted).
+std::size_t load_rows(const std::string& csv,
+                      const csv_layout& lay,
+                      const study_index& ix,
+                      std::vector<row>& rows,
+                      std::size_t& dropped)
+{
+    std::ifstream f(csv);
+    std::string line;
+    dropped = 0;
+    if (!std::getline(f, line))
+        return 0;
+    if (line != lay.header())
+        throw std::invalid_argument("--resume: " + csv + " has the columns '" + line +
+                                    "', this study writes '" + lay.header() + "'");
+    const auto& points = *ix.points;
+    std::size_t loaded = 0;
+    while (std::getline(f, line)) {
+        if (f.eof()) { // no newline: cut by an interruption
+            ++dropped;
+            break;
+        }
+        std::vector<std::string> c;
+        std::stringstream ss(line);
+        std::string cell;
+        while (std::getline(ss, cell, ','))
+            c.push_back(cell);
+        if (!line.empty() && line.back() == ',')
+            c.emplace_back();
+        const std::size_t base = 2 + lay.by_preset + lay.by_sweep;
+        if (c.size() != base + 7) {
+            ++dropped;
+            continue;
+        }
+        try {
+            const std::uint64_t seed = std::stoull(c[0]);
+            const auto st = std::find(ix.strategies.begin(), ix.strategies.end(), c[1]);
+            std::size_t k = 2, pi = points.size();
+            const std::string preset = lay.by_preset ? c[k++] : "";
+            const std::string sweep = lay.by_sweep ? c[k++] : "";
+            for (std::size_t p = 0; p < points.size(); ++p)
+                if (points[p].preset() == preset && points[p].sweep_value() == sweep)
+                    pi = p;
+            if (st == ix.strategies.end() || pi == points.size() || seed < ix.seed ||
+                seed >= ix.seed + ix.runs)
+                continue; // another part of the CSV's study: not this one's
+            row r;
+            r.strategy = *st;
+            r.seed = seed;
+            r.point = pi;
+            r.error = c[k + 6];
+            if (r.error.empty()) {
+                r.distance_m = num("distance_m", c[k]);
+                r.ratio = num("ratio", c[k + 1]);
+                r.time_s = num("time_s", c[k + 2]);
+                r.success = c[k + 3] == "1";
+                r.slots = std::stoull(c[k + 4]);
+                r.has_stage1 = !c[k + 5].empty();
+                r.stage1_deg = r.has_stage1 ? num("stage1", c[k + 5]) : 0.0;
+            }
+            r.done = true;
+            auto& slot = rows[ix.job(pi, st - ix.strategies.begin(), seed - ix.seed)];
+            if (!slot.done)
+                ++loaded;
+            slot = r;
+        } catch (const std::exception&) {
+            ++dropped;
+        }
+    }
+    return loaded;
+}
+
+std::string shell_quote(const std::string& s)
+{
+    std::string o = "'";
+    for (char c : s)
+        o += c == '\'' ? std::string("'\\''") : std::string(1, c);
+    return o + "'";
+}
+
+// The Dask backend: python/rfseek/dask_backend.py reads the jobs, sends chunks to the
+// workers (each runs study_point::run through the bindings) and prints one line per row.
+class dask_backend
+{
+public:
+    dask_backend(const std::string& python,
+                 const std::string& where, // --scheduler ADDR or --local N
+                 int chunk,
+                 const std::vector<study_point>& points,
+                 const std::vector<std::string>& strategies,
+                 const std::vector<std::size_t>& jobs,
+                 const study_index& ix)
+    {
+        char tmpl[] = "/tmp/rfseek-dask-jobs-XXXXXX";
+        const int fd = mkstemp(tmpl);
+        if (fd < 0)
+            throw std::runtime_error("cannot create a temporary file in /tmp");
+        close(fd);
+        d_jobs_file = tmpl;
+        std::ostringstream j;
+        j << "{\"points\": [";
+        for (std::size_t p = 0; p < points.size(); ++p) {
+            j << (p ? ", " : "") << "{\"preset\": " << jstr(points[p].preset())
+              << ", \"sweep_key\": " << jstr(points[p].sweep_key())
+              << ", \"sweep_value\": " << jstr(points[p].sweep_value())
+              << ", \"given\": [";
+            const auto& g = points[p].given();
+            for (std::size_t i = 0; i < g.size(); ++i)
+                j << (i ? ", " : "") << "[" << jstr(g[i].first) << ", "
+                  << jstr(g[i].second) << "]";
+            j << "]}";
+        }
+        j << "],\n \"strategies\": [";
+        for (std::size_t i = 0; i < strategies.size(); ++i)
+            j << (i ? ", " : "") << jstr(strategies[i]);
+        j << "],\n \"chunk\": " << chunk << ",\n \"jobs\": [";
+        const std::size_t per_point = strategies.size() * ix.runs;
+        for (std::size_t i = 0; i < jobs.size(); ++i) {
+            const std::size_t jb = jobs[i];
+            j << (i ? ", " : "") << "[" << jb << ", " << jb / per_point << ", "
+              << (jb % per_point) / ix.runs << ", " << ix.seed + jb % ix.runs << "]";
+        }
+        j << "]}\n";
+        write_atomically(d_jobs_file, j.str());
+        const std::string cmd = shell_quote(python) +
+                                " -m gnuradio.rfseek.dask_backend " +
+                                shell_quote(d_jobs_file) + " " + where;
+        d_pipe = popen(cmd.c_str(), "r");
+        if (!d_pipe)
+            throw std::runtime_error("cannot start " + python);
+    }
+    ~dask_backend()
+    {
+        if (d_pipe)
+            pclose(d_pipe);
+        std::remove(d_jobs_file.c_str());
+    }
+    //! The next line of the backend, false at its end.
+    bool next(std::string& line)
+    {
+        line.clear();
+        char buf[4096];
+        while (std::fgets(buf, sizeof buf, d_pipe)) {
+            line += buf;
+            if (!line.empty() && line.back() == '\n') {
+                line.pop_back();
+                return true;
+            }
+        }
+        return !line.empty();
+    }
+    //! Exit status of the backend (after the last line).
+    int finish()
+    {
+        const int st = pclose(d_pipe);
+        d_pipe = nullptr;
+        return WIFEXITED(st) ? WEXITSTATUS(st) : 128;
+    }
+
+private:
+    std::string d_jobs_file;
+    FILE* d_pipe = nullptr;
+};
+
 } // namespace
 
 int main(int argc, char** argv)
@@ -307,8 +549,11 @@ int main(int argc, char** argv)
     std::string sweep_key;
     std::vector<std::string> sweep_values{ "" };
     std::vector<std::string> presets{ "" };
-    bool quiet = false;
-    settings base;
+    bool quiet = false, resume = false;
+    std::string scheduler, python = "/usr/bin/python3";
+    int dask_local = 0, dask_chunk = 0;
+    double dask_timeout = 10.0;
+    kv_list given;
     std::vector<study_point> points;
     std::string cmdline;
     for (int i = 0; i < argc; ++i)
@@ -348,9 +593,9 @@ int main(int argc, char** argv)
             } else if (a == "--csv") {
                 csv = next();
             } else if (a == "--set") {
-                apply_kv(base, next(), '=');
+                apply_kv(given, next(), '=');
             } else if (a == "--scenario") {
-                load_file(base, next());
+                load_file(given, next());
             } else if (a == "--preset") {
                 const std::string v = next();
                 if (v == "list") {
@@ -371,12 +616,35 @@ int main(int argc, char** argv)
                 sweep_values = split(s.substr(p + 1), ',');
                 if (sweep_values.empty())
                     throw std::invalid_argument("--sweep needs at least one value");
+            } else if (a == "--resume") {
+                resume = true;
+            } else if (a == "--scheduler") {
+                scheduler = next();
+                if (scheduler.empty())
+                    throw std::invalid_argument("--scheduler needs an address");
+            } else if (a == "--dask-local") {
+                dask_local = static_cast<int>(num(a, next()));
+                if (dask_local < 1 || dask_local > 1024)
+                    throw std::invalid_argument("--dask-local must be in 1..1024");
+            } else if (a == "--dask-chunk") {
+                dask_chunk = static_cast<int>(num(a, next()));
+                if (dask_chunk < 1)
+                    throw std::invalid_argument("--dask-chunk must be >= 1");
+            } else if (a == "--dask-timeout") {
+                dask_timeout = num(a, next());
+                if (!(dask_timeout > 0 && dask_timeout <= 3600))
+                    throw std::invalid_argument("--dask-timeout must be in (0, 3600] s");
+            } else if (a == "--python") {
+                python = next();
             } else if (a == "--quiet") {
                 quiet = true;
             } else {
                 throw std::invalid_argument("unknown option '" + a + "' (see --help)");
             }
         }
+        if (!scheduler.empty() && dask_local)
+            throw std::invalid_argument(
+                "--scheduler and --dask-local exclude each other");
         if (csv.empty())
             csv = (out.size() > 5 && out.substr(out.size() - 5) == ".json"
                        ? out.substr(0, out.size() - 5)
@@ -385,15 +653,8 @@ int main(int argc, char** argv)
         // Build and validate every configuration before the long run starts.
         for (const auto& p : presets)
             for (const auto& v : sweep_values) {
-                points.push_back(make_point(base, p, sweep_key, v));
-                const settings& s = points.back().s;
-                s.sc.validate();
-                for (const auto& st : strategies) {
-                    seeker_config c = simulation::seeker_for(s.sc, st);
-                    for (const auto& kv : s.seeker_sets)
-                        c.set(kv.first, kv.second);
-                    simulation check(s.sc, c, s.est);
-                }
+                points.emplace_back(p, given, sweep_key, v);
+                points.back().validate(strategies);
             }
     } catch (const std::exception& e) {
         std::cerr << "rfseek-montecarlo: error: " << e.what() << "\n";
@@ -401,13 +662,84 @@ int main(int argc, char** argv)
     }
     const bool by_preset = !presets.front().empty();
     const bool by_sweep = !sweep_key.empty();
+    const bool use_dask = !scheduler.empty() || dask_local > 0;
+    const csv_layout lay{ by_preset, by_sweep };
+    const study_index ix{ &points, strategies, seed, runs };
+    const std::string study_file = csv + ".study";
+    const std::string study_text = fingerprint(points, seed);
 
-    const double fft_us = fftw_floor_us(points.front().s.sc.fft_len);
     const std::size_t total = points.size() * strategies.size() * runs;
     std::vector<row> rows(total);
+    for (std::size_t j = 0; j < total; ++j) {
+        const std::size_t per_point = strategies.size() * runs;
+        rows[j].point = j / per_point;
+        rows[j].strategy = strategies[(j % per_point) / runs];
+        rows[j].seed = seed + j % runs;
+    }
+    std::size_t resumed = 0;
+    std::unique_ptr<dask_backend> dask;
+    try {
+        if (resume && std::ifstream(csv)) {
+            std::ifstream sf(study_file);
+            if (sf && read_file(study_file) != study_text)
+                throw std::invalid_argument(
+                    "--resume: " + csv + " was written by a study with other settings (" +
+                    study_file +
+                    "); give the same --set/--scenario/--preset/--sweep/--seed "
+                    "or another --out");
+            std::size_t dropped = 0;
+            resumed = load_rows(csv, lay, ix, rows, dropped);
+            std::fprintf(stderr,
+                         "rfseek-montecarlo: resuming: %zu of %zu rows already in %s%s\n",
+                         resumed,
+                         total,
+                         csv.c_str(),
+                         dropped ? " (incomplete lines dropped)" : "");
+        }
+        std::vector<std::size_t> todo;
+        for (std::size_t j = 0; j < total; ++j)
+            if (!rows[j].done)
+                todo.push_back(j);
+        if (use_dask && !todo.empty()) {
+            std::string where = scheduler.empty()
+                                    ? "--local " + std::to_string(dask_local)
+                                    : "--scheduler " + shell_quote(scheduler);
+            where += " --timeout " + jnum(dask_timeout);
+            dask = std::make_unique<dask_backend>(
+                python, where, dask_chunk, points, strategies, todo, ix);
+            std::string line;
+            if (!dask->next(line) || line.rfind("READY", 0) != 0) {
+                const int st = dask->finish();
+                if (!line.empty())
+                    std::cerr << line << "\n";
+                if (st != 2) // 2: the backend said why, in one line
+                    std::cerr << "rfseek-montecarlo: error: the Dask backend (" << python
+                              << " -m gnuradio.rfseek.dask_backend) did not start (exit "
+                              << st << ")\n";
+                return 2;
+            }
+            threads = static_cast<unsigned>(std::max(1L, std::atol(line.c_str() + 5)));
+        }
+        // The CSV from now on holds every finished row: the kept ones, then each new one
+        // as it finishes.
+        std::string kept = lay.header();
+        kept += "\n";
+        for (const auto& r : rows)
+            if (r.done)
+                kept += lay.line(r, points);
+        write_atomically(csv, kept);
+        write_atomically(study_file, study_text);
+    } catch (const std::exception& e) {
+        std::cerr << "rfseek-montecarlo: error: " << e.what() << "\n";
+        return 2;
+    }
+    std::ofstream csv_out(csv, std::ios::app);
+
+    const double fft_us = fftw_floor_us(points.front().scenario_config().fft_len);
+    const std::size_t todo_n = total - resumed;
     std::atomic<std::size_t> next_job{ 0 }, done{ 0 };
     std::atomic<std::uint64_t> slots{ 0 };
-    std::mutex progress_lock;
+    std::mutex lock;
     const auto t0 = clk::now();
     auto last_print = t0;
 
@@ -415,15 +747,15 @@ int main(int argc, char** argv)
         const double el = std::chrono::duration<double>(clk::now() - t0).count();
         const std::size_t d = done.load();
         const double rate = el > 0 ? d / el : 0.0;
-        const double eta = rate > 0 ? (total - d) / rate : 0.0;
+        const double eta = rate > 0 ? (todo_n - d) / rate : 0.0;
         const int width = 30;
-        const int fill = static_cast<int>(width * double(d) / total);
+        const int fill = todo_n ? static_cast<int>(width * double(d) / todo_n) : width;
         std::fprintf(stderr,
                      "\r[%s%s] %zu/%zu runs  %.1f runs/s  elapsed %.0f s  ETA %.0f s   ",
                      std::string(fill, '#').c_str(),
                      std::string(width - fill, '.').c_str(),
                      d,
-                     total,
+                     todo_n,
                      rate,
                      el,
                      eta);
@@ -431,44 +763,101 @@ int main(int argc, char** argv)
             std::fprintf(stderr, "\n");
         std::fflush(stderr);
     };
-
-    auto worker = [&]() {
-        for (;;) {
-            const std::size_t j = next_job.fetch_add(1);
-            if (j >= total)
-                return;
-            const std::size_t per_point = strategies.size() * runs;
-            const std::size_t pi = j / per_point;
-            const std::size_t si = (j % per_point) / runs;
-            const std::size_t ri = j % runs;
-            settings s = points[pi].s;
-            s.sc.seed = seed + ri;
-            seeker_config c = simulation::seeker_for(s.sc, strategies[si]);
-            for (const auto& kv : s.seeker_sets)
-                c.set(kv.first, kv.second);
-            const run_result res = simulation(s.sc, c, s.est).run(false);
-            rows[j] = row{ strategies[si], s.sc.seed, pi, res.summary };
-            slots += res.summary.slots;
-            ++done;
-            if (!quiet) {
-                std::lock_guard<std::mutex> lock(progress_lock);
-                const auto now = clk::now();
-                if (now - last_print > std::chrono::milliseconds(250)) {
-                    last_print = now;
-                    print_progress(false);
-                }
-            }
+    // Called with the lock held, once per finished row.
+    auto finished = [&](const row& r) {
+        csv_out << lay.line(r, points) << std::flush;
+        slots += r.slots;
+        ++done;
+        const auto now = clk::now();
+        if (!quiet && now - last_print > std::chrono::milliseconds(250)) {
+            last_print = now;
+            print_progress(false);
         }
     };
-    std::vector<std::thread> pool;
-    for (unsigned t = 0; t < std::min<std::size_t>(threads, total); ++t)
-        pool.emplace_back(worker);
-    for (auto& t : pool)
-        t.join();
+
+    if (dask) {
+        std::string line;
+        while (dask->next(line)) {
+            std::stringstream ss(line);
+            std::string kind;
+            std::size_t j = total;
+            ss >> kind >> j;
+            if ((kind != "ROW" && kind != "ERR") || j >= total || rows[j].done) {
+                std::cerr << "\nrfseek-montecarlo: Dask backend: " << line << "\n";
+                continue;
+            }
+            row& r = rows[j];
+            if (kind == "ROW") {
+                run_summary s;
+                int success = 0, has1 = 0;
+                ss >> s.distance_m >> s.ratio >> s.time_s >> success >> s.slots >> has1 >>
+                    s.stage1_heading_error_rad;
+                s.success = success;
+                s.has_stage1 = has1;
+                fill(r, s);
+            } else {
+                std::string msg;
+                std::getline(ss, msg);
+                r.error = one_line(trim(msg));
+                if (r.error.empty())
+                    r.error = "failed";
+                r.done = true;
+            }
+            std::lock_guard<std::mutex> g(lock);
+            finished(r);
+        }
+        const int st = dask->finish();
+        if (st != 0) {
+            if (!quiet)
+                print_progress(true);
+            std::cerr << "rfseek-montecarlo: error: the Dask backend stopped (exit " << st
+                      << ") after " << done.load() << " of " << todo_n
+                      << " runs; the finished rows are in " << csv << " (--resume)\n";
+            return 2;
+        }
+    } else {
+        auto worker = [&]() {
+            for (;;) {
+                const std::size_t j = next_job.fetch_add(1);
+                if (j >= total)
+                    return;
+                if (rows[j].done)
+                    continue;
+                row r = rows[j];
+                try {
+                    fill(r, points[r.point].run(r.strategy, r.seed));
+                } catch (const std::exception& e) {
+                    r.error = one_line(e.what());
+                    r.done = true;
+                }
+                std::lock_guard<std::mutex> g(lock);
+                rows[j] = r;
+                finished(r);
+            }
+        };
+        std::vector<std::thread> pool;
+        for (unsigned t = 0;
+             t < std::min<std::size_t>(threads, std::max<std::size_t>(todo_n, 1));
+             ++t)
+            pool.emplace_back(worker);
+        for (auto& t : pool)
+            t.join();
+    }
     if (!quiet)
         print_progress(true);
+    csv_out.close();
     const double wall = std::chrono::duration<double>(clk::now() - t0).count();
-
+    std::size_t missing = 0, errors = 0;
+    for (const auto& r : rows) {
+        missing += !r.done;
+        errors += r.done && !r.error.empty();
+    }
+    if (missing) {
+        std::cerr << "rfseek-montecarlo: error: " << missing << " of " << total
+                  << " runs did not come back; the finished rows are in " << csv
+                  << " (--resume)\n";
+        return 2;
+    }
     auto select = [&](std::size_t point, const std::string& st) {
         std::vector<const row*> sel;
         for (const auto& r : rows)
@@ -479,40 +868,43 @@ int main(int argc, char** argv)
     auto point_json = [&](std::size_t p) {
         std::ostringstream o;
         if (by_preset)
-            o << "\"preset\": " << jstr(points[p].preset);
+            o << "\"preset\": " << jstr(points[p].preset());
         if (by_sweep)
-            o << (by_preset ? ", " : "") << "\"value\": " << jstr(points[p].sweep_value);
+            o << (by_preset ? ", " : "")
+              << "\"value\": " << jstr(points[p].sweep_value());
         for (const auto& st : strategies)
             o << ", " << jstr(st) << ": "
-              << summary_json(select(p, st), points[p].s.sc.shortest_path_m());
+              << summary_json(select(p, st),
+                              points[p].scenario_config().shortest_path_m());
         return o.str();
     };
 
     // JSON
-    const settings& first = points.front().s;
+    const study_point& first = points.front();
     std::ostringstream j;
     j << "{\n  \"tool\": \"rfseek-montecarlo\",\n  \"command\": " << jstr(cmdline)
       << ",\n  \"runs\": " << runs << ",\n  \"seed\": " << seed
       << ",\n  \"strategies\": [";
     for (std::size_t i = 0; i < strategies.size(); ++i)
         j << (i ? ", " : "") << jstr(strategies[i]);
-    j << "],\n  \"scenario\": " << first.sc.to_json() << ",\n  \"seeker_overrides\": {";
-    for (std::size_t i = 0; i < first.seeker_sets.size(); ++i)
-        j << (i ? ", " : "") << jstr(first.seeker_sets[i].first) << ": "
-          << jstr(first.seeker_sets[i].second);
-    j << "},\n  \"estimator\": {\"window\": " << jstr(first.est.window)
-      << ", \"interpolator\": " << jstr(first.est.interpolator)
-      << ", \"min_freq_hz\": " << jnum(first.est.min_freq_hz)
-      << ", \"max_freq_hz\": " << jnum(first.est.max_freq_hz) << "},\n";
+    j << "],\n  \"scenario\": " << first.scenario_config().to_json()
+      << ",\n  \"seeker_overrides\": {";
+    for (std::size_t i = 0; i < first.seeker_sets().size(); ++i)
+        j << (i ? ", " : "") << jstr(first.seeker_sets()[i].first) << ": "
+          << jstr(first.seeker_sets()[i].second);
+    j << "},\n  \"estimator\": {\"window\": " << jstr(first.estimator().window)
+      << ", \"interpolator\": " << jstr(first.estimator().interpolator)
+      << ", \"min_freq_hz\": " << jnum(first.estimator().min_freq_hz)
+      << ", \"max_freq_hz\": " << jnum(first.estimator().max_freq_hz) << "},\n";
     if (by_preset) {
         j << "  \"presets\": {\"names\": [";
         for (std::size_t i = 0; i < presets.size(); ++i)
             j << (i ? ", " : "") << jstr(presets[i]);
         j << "], \"scenarios\": {";
         for (std::size_t p = 0, k = 0; p < points.size(); ++p)
-            if (points[p].sweep_value == sweep_values.front())
-                j << (k++ ? ", " : "") << jstr(points[p].preset) << ": "
-                  << points[p].s.sc.to_json();
+            if (points[p].sweep_value() == sweep_values.front())
+                j << (k++ ? ", " : "") << jstr(points[p].preset()) << ": "
+                  << points[p].scenario_config().to_json();
         j << "}},\n";
     }
     if (by_preset || by_sweep) {
@@ -537,15 +929,18 @@ int main(int argc, char** argv)
         const auto& r = rows[i];
         j << "    {\"seed\": " << r.seed << ", \"strategy\": " << jstr(r.strategy);
         if (by_preset)
-            j << ", \"preset\": " << jstr(points[r.point].preset);
+            j << ", \"preset\": " << jstr(points[r.point].preset());
         if (by_sweep)
-            j << ", \"sweep_value\": " << jstr(points[r.point].sweep_value);
-        j << ", \"distance_m\": " << jnum(r.r.distance_m)
-          << ", \"ratio\": " << jnum(r.r.ratio) << ", \"time_s\": " << jnum(r.r.time_s)
-          << ", \"success\": " << (r.r.success ? "true" : "false")
-          << ", \"slots\": " << r.r.slots << ", \"stage1_heading_error_deg\": "
-          << (r.r.has_stage1 ? jnum(r.r.stage1_heading_error_rad * 180.0 / M_PI) : "null")
-          << "}" << (i + 1 < rows.size() ? "," : "") << "\n";
+            j << ", \"sweep_value\": " << jstr(points[r.point].sweep_value());
+        if (!r.error.empty())
+            j << ", \"error\": " << jstr(r.error);
+        else
+            j << ", \"distance_m\": " << jnum(r.distance_m)
+              << ", \"ratio\": " << jnum(r.ratio) << ", \"time_s\": " << jnum(r.time_s)
+              << ", \"success\": " << (r.success ? "true" : "false")
+              << ", \"slots\": " << r.slots << ", \"stage1_heading_error_deg\": "
+              << (r.has_stage1 ? jnum(r.stage1_deg) : "null");
+        j << "}" << (i + 1 < rows.size() ? "," : "") << "\n";
     }
     // "summary": the last point's (the only one without presets or a sweep).
     j << "  ],\n  \"summary\": {";
@@ -553,50 +948,58 @@ int main(int argc, char** argv)
         const std::size_t p = points.size() - 1;
         for (std::size_t k = 0; k < strategies.size(); ++k)
             j << (k ? ",\n    " : "\n    ") << jstr(strategies[k]) << ": "
-              << summary_json(select(p, strategies[k]), points[p].s.sc.shortest_path_m());
+              << summary_json(select(p, strategies[k]),
+                              points[p].scenario_config().shortest_path_m());
     }
-    const double per_run = wall * std::min<double>(threads, total) / total;
-    j << "\n  },\n  \"timing\": {\"threads\": " << threads
-      << ", \"wall_s\": " << jnum(wall) << ", \"cpu_s_per_run\": " << jnum(per_run)
-      << ", \"us_per_slot\": "
-      << jnum(1e6 * wall * std::min<double>(threads, total) / slots)
-      << ", \"fftw_us\": " << jnum(fft_us) << ", \"slots\": " << slots.load() << "}\n}\n";
-    std::ofstream(out) << j.str();
-
-    std::ofstream c(csv);
-    c << "seed,strategy" << (by_preset ? ",preset" : "")
-      << (by_sweep ? ",sweep_value" : "")
-      << ",distance_m,ratio,time_s,success,slots,stage1_heading_error_deg\n";
-    for (const auto& r : rows) {
-        c << r.seed << "," << r.strategy;
-        if (by_preset)
-            c << "," << points[r.point].preset;
-        if (by_sweep)
-            c << "," << points[r.point].sweep_value;
-        c << "," << jnum(r.r.distance_m) << "," << jnum(r.r.ratio) << ","
-          << jnum(r.r.time_s) << "," << (r.r.success ? 1 : 0) << "," << r.r.slots << ","
-          << (r.r.has_stage1 ? jnum(r.r.stage1_heading_error_rad * 180.0 / M_PI) : "")
-          << "\n";
+    const std::size_t ran = std::max<std::size_t>(todo_n, 1);
+    const double per_run = wall * std::min<double>(threads, ran) / ran;
+    const double us_slot =
+        slots ? 1e6 * wall * std::min<double>(threads, ran) / slots : 0.0;
+    j << "\n  },\n  \"timing\": {\"backend\": "
+      << jstr(use_dask ? (scheduler.empty() ? "dask-local" : "dask") : "threads")
+      << ", \"threads\": " << threads << ", \"runs_resumed\": " << resumed
+      << ", \"runs_errors\": " << errors << ", \"wall_s\": " << jnum(wall)
+      << ", \"cpu_s_per_run\": " << jnum(per_run)
+      << ", \"us_per_slot\": " << jnum(us_slot) << ", \"fftw_us\": " << jnum(fft_us)
+      << ", \"slots\": " << slots.load() << "}\n}\n";
+    try {
+        write_atomically(out, j.str());
+        // The finished CSV in run order (as it was appended, in finishing order).
+        std::string text = lay.header() + "\n";
+        for (const auto& r : rows)
+            text += lay.line(r, points);
+        write_atomically(csv, text);
+    } catch (const std::exception& e) {
+        std::cerr << "rfseek-montecarlo: error: " << e.what() << "\n";
+        return 2;
     }
 
     // Console summary
     std::printf(
-        "rfseek-montecarlo: %d runs x %zu strategies x %zu points, %u threads, "
-        "%.1f s (%.3f s per run per thread, %.2f us per slot, FFTW %d: %.2f us)\n",
+        "rfseek-montecarlo: %d runs x %zu strategies x %zu points, %s, %zu run here "
+        "(%zu resumed) in %.1f s (%.3f s per run per worker, %.2f us per slot, "
+        "FFTW %d: %.2f us)\n",
         runs,
         strategies.size(),
         points.size(),
-        threads,
+        use_dask ? ("Dask, " + std::to_string(threads) + " workers").c_str()
+                 : (std::to_string(threads) + " threads").c_str(),
+        todo_n,
+        resumed,
         wall,
         per_run,
-        1e6 * wall * std::min<double>(threads, total) / slots,
-        first.sc.fft_len,
+        us_slot,
+        first.scenario_config().fft_len,
         fft_us);
+    if (errors)
+        std::printf("%zu runs raised (rows with an error, left out of the statistics)\n",
+                    errors);
     for (std::size_t p = 0; p < points.size(); ++p) {
         if (by_preset)
-            std::printf("preset %s%s", points[p].preset.c_str(), by_sweep ? ", " : "\n");
+            std::printf(
+                "preset %s%s", points[p].preset().c_str(), by_sweep ? ", " : "\n");
         if (by_sweep)
-            std::printf("%s = %s\n", sweep_key.c_str(), points[p].sweep_value.c_str());
+            std::printf("%s = %s\n", sweep_key.c_str(), points[p].sweep_value().c_str());
         std::printf("  %-16s %8s %10s %10s %10s %8s %8s %8s\n",
                     "strategy",
                     "success",
@@ -610,22 +1013,25 @@ int main(int argc, char** argv)
             std::vector<double> d, ratio;
             int ok = 0;
             for (const row* r : select(p, st)) {
-                d.push_back(r->r.distance_m);
-                ratio.push_back(r->r.ratio);
-                ok += r->r.success;
+                if (!r->error.empty())
+                    continue;
+                d.push_back(r->distance_m);
+                ratio.push_back(r->ratio);
+                ok += r->success;
             }
             double md = 0, mr = 0;
             for (std::size_t i = 0; i < d.size(); ++i) {
                 md += d[i];
                 mr += ratio[i];
             }
+            const double n = std::max<std::size_t>(d.size(), 1);
             std::printf("  %-16s %7.1f%% %10.0f %10.0f %10.0f %8.3f %8.3f %8.3f\n",
                         st.c_str(),
-                        100.0 * ok / d.size(),
-                        md / d.size(),
+                        100.0 * ok / n,
+                        md / n,
                         percentile(d, 0.5),
                         percentile(d, 0.9),
-                        mr / d.size(),
+                        mr / n,
                         percentile(ratio, 0.5),
                         percentile(ratio, 0.9));
         }

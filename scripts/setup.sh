@@ -40,7 +40,7 @@ packages=(
     build-essential cmake pkg-config git
     gnuradio gnuradio-dev libvolk2-dev libfftw3-dev libuhd-dev gr-osmosdr
     pybind11-dev libgtest-dev libboost-all-dev libspdlog-dev libfmt-dev libgmp-dev
-    python3-numpy python3-matplotlib python3-yaml
+    python3-numpy python3-matplotlib python3-yaml python3-distributed
 )
 if [ "${RFSEEK_SKIP_APT:-0}" != 1 ]; then
     missing=()

@@ -18,6 +18,7 @@ void bind_channel_source(py::module& m);
 void bind_doppler_estimator(py::module& m);
 void bind_seeker(py::module& m);
 void bind_simulation(py::module& m);
+void bind_study(py::module& m);
 void bind_seeking_controller(py::module& m);
 
 PYBIND11_MODULE(rfseek_python, m)
@@ -34,5 +35,6 @@ PYBIND11_MODULE(rfseek_python, m)
     bind_doppler_estimator(m);
     bind_seeker(m);
     bind_simulation(m);
+    bind_study(m);
     bind_seeking_controller(m);
 }

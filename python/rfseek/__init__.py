@@ -7,7 +7,7 @@
 Blocks: channel_source (simulated emitter, scatterers, UAV, CFO), doppler_estimator
 (zero-padded FFT frequency estimator), seeking_controller (the paper's seeker), seek_view
 (QT GUI trajectory and frequency plots).
-Core classes: scenario, world, rng, tone_estimator, seeker, simulation.
+Core classes: scenario, world, rng, tone_estimator, seeker, simulation, study_point.
 Helpers: flowgraphs.closed_loop, plots.
 """
 

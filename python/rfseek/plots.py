@@ -120,6 +120,8 @@ def _rows_by_strategy(result, sweep_value=None):
     for r in result["rows"]:
         if sweep_value is not None and r.get("sweep_value") != sweep_value:
             continue
+        if "error" in r:  # a run that raised: counted in the summary, not drawn
+            continue
         out.setdefault(r["strategy"], []).append(r)
     return out
 

@@ -26,20 +26,31 @@ bool parse_mode(const std::string& mode)
     throw std::invalid_argument("channel_source: mode = '" + mode +
                                 "': must be 'burst' or 'continuous'");
 }
+double check_speedup(double speedup)
+{
+    if (!(speedup > 0.0 && speedup <= 1e6))
+        throw std::invalid_argument("speedup: must be in (0, 1e6] (1: real time), got " +
+                                    std::to_string(speedup));
+    return speedup;
+}
+
 } // namespace
 
 channel_source::sptr channel_source::make(const scenario& sc,
                                           const std::string& mode,
                                           bool lockstep,
-                                          bool realtime)
+                                          bool realtime,
+                                          double speedup)
 {
-    return gnuradio::make_block_sptr<channel_source_impl>(sc, mode, lockstep, realtime);
+    return gnuradio::make_block_sptr<channel_source_impl>(
+        sc, mode, lockstep, realtime, speedup);
 }
 
 channel_source_impl::channel_source_impl(const scenario& sc,
                                          const std::string& mode,
                                          bool lockstep,
-                                         bool realtime)
+                                         bool realtime,
+                                         double speedup)
     : gr::sync_block("channel_source",
                      gr::io_signature::make(0, 0, 0),
                      gr::io_signature::make(1, 1, sizeof(gr_complex))),
@@ -57,6 +68,7 @@ channel_source_impl::channel_source_impl(const scenario& sc,
       d_key_rx_rate(pmt::mp("rx_rate")),
       d_key_rx_freq(pmt::mp("rx_freq"))
 {
+    d_speedup = check_speedup(speedup);
     d_cmd_heading = d_world.heading_rad();
     message_port_register_in(d_port_cmd);
     set_msg_handler(d_port_cmd, [this](const pmt::pmt_t& msg) { handle_cmd(msg); });
@@ -115,12 +127,22 @@ void channel_source_impl::handle_cmd(const pmt::pmt_t& msg)
         }
         const long long k = pmt::is_uint64(s) ? static_cast<long long>(pmt::to_uint64(s))
                                               : pmt::to_long(s);
-        if (k != static_cast<long long>(d_world.slot())) {
+        const long long now = static_cast<long long>(d_world.slot());
+        if (d_lockstep ? k != now : (k > now || k <= d_cmd_slot)) {
             ++d_stale;
-            d_logger->debug(
-                "cmd for slot {} ignored: current slot is {}", k, d_world.slot());
+            d_logger->debug("cmd for slot {} ignored: current slot is {}{}",
+                            k,
+                            now,
+                            d_lockstep ? ""
+                                       : ", newest command applied " +
+                                             std::to_string(d_cmd_slot));
             return;
         }
+        // Free-running, the receive chain lags the world by a few slots: the newest
+        // command is the best the vehicle has, as a real autopilot would fly it.
+        if (k < now)
+            ++d_late;
+        d_cmd_slot = k;
     }
     d_cmd_heading = heading;
     d_have_cmd = true;
@@ -222,7 +244,7 @@ int channel_source_impl::work(int noutput_items,
                 const auto due =
                     d_t0 +
                     std::chrono::duration_cast<std::chrono::steady_clock::duration>(
-                        std::chrono::duration<double>(d_world.time_s()));
+                        std::chrono::duration<double>(d_world.time_s() / d_speedup));
                 if (std::chrono::steady_clock::now() < due) {
                     if (produced > 0)
                         break;
@@ -270,6 +292,12 @@ std::uint64_t channel_source_impl::stale_count() const
     return d_stale;
 }
 
+std::uint64_t channel_source_impl::late_count() const
+{
+    gr::thread::scoped_lock lock(setlock());
+    return d_late;
+}
+
 bool channel_source_impl::lockstep() const
 {
     gr::thread::scoped_lock lock(setlock());
@@ -310,10 +338,28 @@ void channel_source_impl::set_realtime(bool realtime)
 {
     gr::thread::scoped_lock lock(d_setlock);
     if (realtime && !d_realtime)
-        d_t0 = std::chrono::steady_clock::now() -
-               std::chrono::duration_cast<std::chrono::steady_clock::duration>(
-                   std::chrono::duration<double>(d_world.time_s()));
+        reanchor();
     d_realtime = realtime;
+}
+
+double channel_source_impl::speedup() const
+{
+    gr::thread::scoped_lock lock(setlock());
+    return d_speedup;
+}
+
+void channel_source_impl::set_speedup(double speedup)
+{
+    gr::thread::scoped_lock lock(d_setlock);
+    d_speedup = check_speedup(speedup);
+    reanchor(); // the pace changes from now on, without a jump
+}
+
+void channel_source_impl::reanchor()
+{
+    d_t0 = std::chrono::steady_clock::now() -
+           std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+               std::chrono::duration<double>(d_world.time_s() / d_speedup));
 }
 
 } // namespace rfseek

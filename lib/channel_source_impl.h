@@ -22,7 +22,8 @@ public:
     channel_source_impl(const scenario& sc,
                         const std::string& mode,
                         bool lockstep,
-                        bool realtime);
+                        bool realtime,
+                        double speedup);
 
     int work(int noutput_items,
              gr_vector_const_void_star& input_items,
@@ -34,6 +35,7 @@ public:
     std::uint64_t slot() const override;
     std::uint64_t malformed_count() const override;
     std::uint64_t stale_count() const override;
+    std::uint64_t late_count() const override;
     bool lockstep() const override;
     bool realtime() const override;
 
@@ -42,6 +44,8 @@ public:
     void set_turn_rate_rad_per_s(double rate) override;
     void set_lockstep(bool lockstep) override;
     void set_realtime(bool realtime) override;
+    double speedup() const override;
+    void set_speedup(double speedup) override;
 
 private:
     gr::thread::mutex& setlock() const
@@ -52,11 +56,13 @@ private:
     void drop(const std::string& kind, const pmt::pmt_t& msg);
     void begin_slot(std::uint64_t offset);
     void publish_state();
+    void reanchor(); // d_t0 such that the world's time is due now
 
     world d_world;
     const bool d_continuous;
     bool d_lockstep;
     bool d_realtime;
+    double d_speedup = 1.0;
     std::vector<gr_complex> d_buf;
     std::size_t d_pos = 0;
     bool d_started = false;
@@ -66,6 +72,8 @@ private:
     double d_cmd_heading = 0.0;
     std::uint64_t d_malformed = 0;
     std::uint64_t d_stale = 0;
+    std::uint64_t d_late = 0;
+    long long d_cmd_slot = -1; // slot of the newest command applied
     std::set<std::string> d_logged;
     std::chrono::steady_clock::time_point d_t0;
 

@@ -37,9 +37,11 @@ namespace rfseek {
  *
  * lockstep (default): slot k+1 is produced only after the cmd for slot k arrived, so a
  * run is reproducible from its seed. Otherwise the source runs free and applies the
- * latest cmd at each slot boundary; realtime paces the output to the sample clock.
- * The stream ends (WORK_DONE) when the UAV is within success_radius_m or has flown the
- * flight cap. Malformed cmd messages are logged once per kind, counted and dropped.
+ * newest cmd it has at each slot boundary (the receive chain lags by a few slots, so a
+ * cmd for a past slot is flown late rather than dropped); realtime paces the output to
+ * the sample clock, speedup times faster (a sped-up rehearsal of a live run). The stream
+ * ends (WORK_DONE) when the UAV is within success_radius_m or has flown the flight cap.
+ * Malformed cmd messages are logged once per kind, counted and dropped.
  */
 class RFSEEK_API channel_source : virtual public gr::sync_block
 {
@@ -51,27 +53,38 @@ public:
      * \param mode "burst" or "continuous"
      * \param lockstep wait for the cmd of each slot before producing the next
      * \param realtime pace output to real time (for live-looking demos)
+     * \param speedup pacing speed-up over real time, in (0, 1e6] (1: real time)
      */
     static sptr make(const scenario& sc,
                      const std::string& mode = "burst",
                      bool lockstep = true,
-                     bool realtime = false);
+                     bool realtime = false,
+                     double speedup = 1.0);
 
     virtual scenario config() const = 0;
     virtual std::string mode() const = 0;
     //! Current slot index (the slot being, or last, produced).
     virtual std::uint64_t slot() const = 0;
-    //! cmd messages dropped as malformed / as stale (slot not the current one).
+    //! cmd messages dropped as malformed.
     virtual std::uint64_t malformed_count() const = 0;
+    /*!
+     * cmd messages ignored as stale. In lockstep: a slot other than the current one.
+     * Free-running: a slot older than the newest command applied, or one not flown yet.
+     */
     virtual std::uint64_t stale_count() const = 0;
+    //! Free-running: commands applied after their slot had passed (the latest one wins).
+    virtual std::uint64_t late_count() const = 0;
     virtual bool lockstep() const = 0;
     virtual bool realtime() const = 0;
+    virtual double speedup() const = 0;
 
     virtual void set_snr_db(double snr_db) = 0;
     virtual void set_heading_noise_rad(double sigma) = 0;
     virtual void set_turn_rate_rad_per_s(double rate) = 0;
     virtual void set_lockstep(bool lockstep) = 0;
     virtual void set_realtime(bool realtime) = 0;
+    //! Throws std::invalid_argument outside (0, 1e6].
+    virtual void set_speedup(double speedup) = 0;
 };
 
 } // namespace rfseek

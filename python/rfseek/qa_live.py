@@ -8,6 +8,7 @@ the USRP and osmosdr sources, replay of the committed recording, a short simulat
 and argument errors."""
 
 import os
+import re
 import subprocess
 import sys
 
@@ -43,6 +44,33 @@ class qa_live(gr_unittest.TestCase):
                  "--strategy", "paper_no_circle")
         self.assertEqual(p.returncode, 0, p.stderr)
         self.assertIn("arrived", p.stderr)
+
+    def test_free_running_paced_run_flies_the_late_commands(self):
+        # Paced to (20 x) real time, free-running: each command reaches the simulator after
+        # its slot has passed. Flown late, they turn the UAV, which starts flying away,
+        # back to the emitter; dropped (as before issue 12) it would fly away to the cap.
+        p = live("--source", "sim", "--speedup", "20", "--set", "initial_distance_m=800",
+                 "--set", "start_angle_rad=0", "--set", "start_heading_rad=0",
+                 "--strategy", "adaptive", "--duration", "120")
+        self.assertEqual(p.returncode, 0, p.stderr)
+        self.assertIn("rfseek-live: arrived", p.stderr)
+        m = re.search(r"simulator: (\d+) commands applied late, (\d+) stale", p.stderr)
+        self.assertIsNotNone(m, p.stderr)
+        self.assertGreater(int(m.group(1)), 100)
+        flown = float(re.search(r"arrived, (\d+) m flown", p.stderr).group(1))
+        self.assertLess(flown, 1.25 * 600)  # shortest path 800 - 200 m
+
+    def test_speedup_out_of_range_is_a_value_error(self):
+        from gnuradio import rfseek
+        for bad in (0.0, -1.0, float("nan"), 1e7):
+            with self.assertRaisesRegex(ValueError, "speedup"):
+                rfseek.channel_source(rfseek.scenario(), speedup=bad)
+        src = rfseek.channel_source(rfseek.scenario(), lockstep=False, realtime=True,
+                                    speedup=5.0)
+        self.assertEqual(src.speedup(), 5.0)
+        with self.assertRaisesRegex(ValueError, "speedup"):
+            src.set_speedup(0.0)
+        self.assertEqual(src.speedup(), 5.0)
 
     def test_bad_arguments(self):
         self.assertEqual(live("--source", "file").returncode, 2)

@@ -12,6 +12,7 @@ import json
 import math
 import socket
 import threading
+import time
 
 import pmt
 from gnuradio import blocks, gr, gr_unittest
@@ -108,11 +109,49 @@ class qa_vehicle_bridge(gr_unittest.TestCase):
             tb.wait()
             vehicle.close()
 
+    def test_size_and_rate_bounds(self):
+        vehicle = loopback_vehicle(port=0, bridge=("127.0.0.1", 0))
+        vehicle.reporting = False
+        bridge = vehicle_bridge(local_port=0, peer_port=vehicle.sock.getsockname()[1],
+                                nav_timeout=30.0, max_datagram=256, max_rate_hz=20.0)
+        vehicle.bridge = bridge.local
+        nav = blocks.message_debug()
+        tb = gr.top_block()
+        tb.msg_connect(bridge, "nav", nav, "store")
+        tb.start()
+        try:
+            good = json.dumps({"type": "nav", "heading_deg": 45.0}).encode()
+            big = json.dumps({"type": "nav", "heading_deg": 45.0, "pad": "x" * 300}).encode()
+            vehicle.report(big)
+            self.assertTrue(wait_until(lambda: bridge.dropped["oversize"] == 1))
+            # A flood of 100 good reports at once: a burst of 20 (one second's worth) passes,
+            # the rest is dropped and counted; nothing else is lost.
+            for _ in range(100):
+                vehicle.report(good)
+            self.assertTrue(wait_until(lambda: bridge.received + bridge.dropped["rate"] == 100))
+            self.assertGreaterEqual(bridge.received, 20)
+            self.assertLess(bridge.received, 40)  # the bucket refills at 20/s meanwhile
+            self.assertEqual(nav.num_messages(), bridge.received)
+            # After the flood, reports at the allowed rate pass again.
+            time.sleep(0.5)
+            before = bridge.received
+            vehicle.report(good)
+            self.assertTrue(wait_until(lambda: bridge.received == before + 1))
+        finally:
+            tb.stop()
+            tb.wait()
+            vehicle.close()
+
     def test_bad_parameters(self):
         with self.assertRaisesRegex(ValueError, "peer_port"):
             vehicle_bridge(local_port=0, peer_port=70000)
         with self.assertRaisesRegex(ValueError, "nav_timeout"):
             vehicle_bridge(local_port=0, peer_port=1, nav_timeout=0)
+        with self.assertRaisesRegex(ValueError, "max_datagram"):
+            vehicle_bridge(local_port=0, peer_port=1, max_datagram=10)
+        for bad in (0, -1.0, float("nan"), "fast"):
+            with self.assertRaisesRegex(ValueError, "max_rate_hz"):
+                vehicle_bridge(local_port=0, peer_port=1, max_rate_hz=bad)
 
 
 if __name__ == "__main__":

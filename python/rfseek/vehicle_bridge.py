@@ -15,8 +15,10 @@ works in radians counter-clockwise from east; the bridge converts at this bounda
 theta = pi/2 - radians(heading_deg), heading_deg = (90 - degrees(theta)) mod 360.
 
 The bridge binds to a local address (loopback by default), sends commands to the
-configured peer and accepts reports only from that peer; foreign, malformed or
-out-of-range datagrams are logged (once per kind), counted and dropped. When reports stop
+configured peer and accepts reports only from that peer; foreign, oversized (more than
+max_datagram bytes), too frequent (more than max_rate_hz reports per second, beyond a
+burst of one second's worth), malformed or out-of-range datagrams are logged (once per
+kind), counted and dropped. When reports stop
 for nav_timeout seconds it logs it once and repeats the last command every second, so the
 vehicle holds its course.
 """
@@ -63,7 +65,7 @@ class vehicle_bridge(gr.basic_block):
     vehicle's reports -> "nav" out (to seeking_controller), as {heading, time}."""
 
     def __init__(self, local_addr="127.0.0.1", local_port=14650, peer_addr="127.0.0.1",
-                 peer_port=14651, nav_timeout=2.0):
+                 peer_port=14651, nav_timeout=2.0, max_datagram=1024, max_rate_hz=50.0):
         gr.basic_block.__init__(self, name="vehicle_bridge", in_sig=None, out_sig=None)
         for name, port in (("local_port", local_port), ("peer_port", peer_port)):
             if not isinstance(port, int) or not 0 <= port <= 65535:
@@ -71,6 +73,15 @@ class vehicle_bridge(gr.basic_block):
                                  % (name, port))
         if not nav_timeout > 0:
             raise ValueError("vehicle_bridge: nav_timeout = %r: must be > 0 s" % nav_timeout)
+        if not isinstance(max_datagram, int) or not 64 <= max_datagram <= 65507:
+            raise ValueError("vehicle_bridge: max_datagram = %r: must be an integer in "
+                             "[64, 65507] bytes" % (max_datagram,))
+        if not (isinstance(max_rate_hz, (int, float)) and 0 < max_rate_hz <= 10000):
+            raise ValueError("vehicle_bridge: max_rate_hz = %r: must be in (0, 10000] "
+                             "reports per second" % (max_rate_hz,))
+        self.max_datagram = max_datagram
+        self.max_rate_hz = float(max_rate_hz)
+        self._tokens = self.max_rate_hz  # token bucket: a burst of one second's worth
         self.peer = (socket.gethostbyname(peer_addr), peer_port)
         self.nav_timeout = float(nav_timeout)
         self.sock = socket.socket(socket.AF_INET, socket.SOCK_DGRAM)
@@ -82,7 +93,7 @@ class vehicle_bridge(gr.basic_block):
         self.set_msg_handler(pmt.intern("cmd"), self.handle_cmd)
         self.sent = 0
         self.received = 0
-        self.dropped = {"foreign": 0, "malformed": 0, "cmd": 0}
+        self.dropped = {"foreign": 0, "oversize": 0, "rate": 0, "malformed": 0, "cmd": 0}
         self._logged = set()
         self._seq = 0
         self._last_cmd = None
@@ -126,6 +137,7 @@ class vehicle_bridge(gr.basic_block):
 
     def _receive(self):
         last_repeat = 0.0
+        last_refill = time.monotonic()
         while self._running:
             try:
                 data, addr = self.sock.recvfrom(65536)
@@ -134,12 +146,24 @@ class vehicle_bridge(gr.basic_block):
             except OSError:
                 break
             now = time.monotonic()
+            self._tokens = min(self.max_rate_hz,
+                               self._tokens + (now - last_refill) * self.max_rate_hz)
+            last_refill = now
             if data is not None:
                 if addr != self.peer:
                     self.dropped["foreign"] += 1
                     self._log_once("foreign", "datagram from %s:%d dropped: only %s:%d is "
                                    "accepted" % (addr[0], addr[1], self.peer[0], self.peer[1]))
+                elif len(data) > self.max_datagram:
+                    self.dropped["oversize"] += 1
+                    self._log_once("oversize", "datagram of %d bytes dropped: at most %d are "
+                                   "accepted" % (len(data), self.max_datagram))
+                elif self._tokens < 1.0:
+                    self.dropped["rate"] += 1
+                    self._log_once("rate", "reports faster than %g per second: the excess "
+                                   "is dropped" % self.max_rate_hz)
                 else:
+                    self._tokens -= 1.0
                     try:
                         heading_deg, t = parse_nav(data)
                     except ValueError as e:

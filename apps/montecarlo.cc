@@ -18,6 +18,7 @@
 #include <unistd.h>
 #include <algorithm>
 #include <atomic>
+#include <cerrno>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -79,6 +80,19 @@ double num(const std::string& key, const std::string& v)
     if (v.empty() || *end != '\0')
         throw std::invalid_argument(key + ": cannot parse '" + v + "' as a number");
     return d;
+}
+
+// A whole number in [lo, hi], or an error naming the option and the range.
+long long
+integer(const std::string& key, const std::string& v, long long lo, long long hi)
+{
+    char* end = nullptr;
+    errno = 0;
+    const long long n = std::strtoll(v.c_str(), &end, 10);
+    if (v.empty() || *end != '\0' || errno == ERANGE || n < lo || n > hi)
+        throw std::invalid_argument(key + " = '" + v + "': must be a whole number in [" +
+                                    std::to_string(lo) + ", " + std::to_string(hi) + "]");
+    return n;
 }
 
 std::string trim(std::string s)
@@ -571,11 +585,10 @@ int main(int argc, char** argv)
                 std::cout << USAGE;
                 return 0;
             } else if (a == "--runs") {
-                runs = static_cast<int>(num(a, next()));
-                if (runs < 1)
-                    throw std::invalid_argument("--runs must be >= 1");
+                runs = static_cast<int>(integer(a, next(), 1, 100000000));
             } else if (a == "--seed") {
-                seed = std::strtoull(next().c_str(), nullptr, 10);
+                seed = static_cast<std::uint64_t>(
+                    integer(a, next(), 0, 9000000000000000000LL));
             } else if (a == "--strategy") {
                 strategies = split(next(), ',');
                 const auto known = seeker::strategies();
@@ -585,9 +598,7 @@ int main(int argc, char** argv)
                                                     "' (paper, paper_no_circle, "
                                                     "rss_baseline, adaptive)");
             } else if (a == "--threads") {
-                threads = static_cast<unsigned>(num(a, next()));
-                if (threads < 1)
-                    throw std::invalid_argument("--threads must be >= 1");
+                threads = static_cast<unsigned>(integer(a, next(), 1, 1024));
             } else if (a == "--out") {
                 out = next();
             } else if (a == "--csv") {
@@ -623,13 +634,9 @@ int main(int argc, char** argv)
                 if (scheduler.empty())
                     throw std::invalid_argument("--scheduler needs an address");
             } else if (a == "--dask-local") {
-                dask_local = static_cast<int>(num(a, next()));
-                if (dask_local < 1 || dask_local > 1024)
-                    throw std::invalid_argument("--dask-local must be in 1..1024");
+                dask_local = static_cast<int>(integer(a, next(), 1, 1024));
             } else if (a == "--dask-chunk") {
-                dask_chunk = static_cast<int>(num(a, next()));
-                if (dask_chunk < 1)
-                    throw std::invalid_argument("--dask-chunk must be >= 1");
+                dask_chunk = static_cast<int>(integer(a, next(), 1, 1000000));
             } else if (a == "--dask-timeout") {
                 dask_timeout = num(a, next());
                 if (!(dask_timeout > 0 && dask_timeout <= 3600))
@@ -650,6 +657,13 @@ int main(int argc, char** argv)
                        ? out.substr(0, out.size() - 5)
                        : out) +
                   ".csv";
+        // Where the results go must be writable before hours of runs, not after.
+        for (const std::string& f : { out, csv }) {
+            const std::string probe = f + ".tmp";
+            if (!std::ofstream(probe))
+                throw std::invalid_argument("cannot write " + f + " (--out / --csv)");
+            std::remove(probe.c_str());
+        }
         // Build and validate every configuration before the long run starts.
         for (const auto& p : presets)
             for (const auto& v : sweep_values) {

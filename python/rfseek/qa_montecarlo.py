@@ -163,11 +163,23 @@ class qa_montecarlo(gr_unittest.TestCase):
                            (["--set", "snr_db=loud"], "snr_db"),
                            (["--set", "window_len=2"], "window_len"),
                            (["--set", "delta_deg=95"], "delta_rad"),
+                           (["--set", "snr_db=nan"], "snr_db"),
+                           (["--set", "snr_db=inf"], "snr_db"),
+                           (["--runs", "2.5"], "--runs"),
+                           (["--threads", "0"], "--threads"),
+                           (["--seed", "abc"], "--seed"),
+                           (["--dask-local", "0"], "--dask-local"),
+                           (["--scheduler", "tcp://h:1", "--dask-local", "2"], "exclude"),
+                           (["--csv", os.path.join(self.tmp, "no", "such", "dir.csv")],
+                            "cannot write"),
                            (["--bogus"], "--bogus")):
-            p, _ = run_mc(self.tmp, "bad", *args)
+            p, out = run_mc(self.tmp, "bad", *args)
             self.assertEqual(p.returncode, 2, args)
             self.assertIn(word, p.stderr)
             self.assertNotIn("Traceback", p.stderr)
+            self.assertEqual(len(p.stderr.strip().splitlines()), 1, p.stderr)
+            # nothing written: no partial output file
+            self.assertEqual([f for f in os.listdir(self.tmp) if f.startswith("bad")], [])
 
 
 if __name__ == "__main__":

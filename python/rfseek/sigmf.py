@@ -110,18 +110,59 @@ class sigmf_recorder(gr.sync_block):
         return True
 
 
+def _number(where, v, lo, hi):
+    """v as a float in [lo, hi], or ValueError naming where it came from."""
+    if isinstance(v, bool) or not isinstance(v, (int, float)) or not lo <= v <= hi:
+        raise ValueError("%s = %r: must be a number in [%g, %g]" % (where, v, lo, hi))
+    return float(v)
+
+
 def load(base):
-    """(samples as complex64, metadata dict) of BASE.sigmf-{data,meta}; ValueError if the
-    recording is not one this module can replay."""
-    with open(base + ".sigmf-meta") as f:
-        meta = json.load(f)
-    g = meta.get("global", {})
+    """(samples as complex64, metadata dict) of BASE.sigmf-{data,meta}; ValueError naming
+    the field if the recording is not one this module can replay (a recording comes from
+    outside: every field used is checked, python/rfseek/fuzz_python.py tries the rest)."""
+    try:
+        with open(base + ".sigmf-meta", "rb") as f:
+            meta = json.loads(f.read().decode("utf-8"))
+    except (UnicodeDecodeError, ValueError) as e:
+        raise ValueError("%s.sigmf-meta: not JSON (%s)" % (base, e))
+    if not isinstance(meta, dict) or not isinstance(meta.get("global"), dict):
+        raise ValueError("%s.sigmf-meta: no 'global' object" % base)
+    g = meta["global"]
     if g.get("core:datatype") != "cf32_le":
         raise ValueError("%s: core:datatype %r: only cf32_le is supported" % (
             base, g.get("core:datatype")))
-    if not g.get("core:sample_rate", 0) > 0:
-        raise ValueError("%s: no positive core:sample_rate" % base)
-    data = np.fromfile(base + ".sigmf-data", dtype=np.complex64)
+    v = g.get("core:sample_rate")
+    if isinstance(v, bool) or not isinstance(v, (int, float)) or not 0 < v < 1e12:
+        raise ValueError("%s: no positive core:sample_rate (got %r)" % (base, v))
+    caps = meta.get("captures", [])
+    if not isinstance(caps, list) or not all(isinstance(c, dict) for c in caps):
+        raise ValueError("%s: captures: must be a list of objects" % base)
+    if caps and "core:frequency" in caps[0]:
+        _number("%s: captures[0].core:frequency" % base, caps[0]["core:frequency"], -1e12, 1e12)
+    anns = meta.get("annotations", [])
+    if not isinstance(anns, list) or not all(isinstance(a, dict) for a in anns):
+        raise ValueError("%s: annotations: must be a list of objects" % base)
+    data = np.fromfile(base + ".sigmf-data", dtype=np.uint8)
+    if data.size % 8:
+        raise ValueError("%s.sigmf-data: %d bytes, not a whole number of cf32_le samples"
+                         % (base, data.size))
+    data = data.view(np.complex64)
+    for i, a in enumerate(anns):
+        if a.get("core:label") != "beacon":
+            continue
+        where = "%s: annotations[%d]" % (base, i)
+        start = a.get("core:sample_start")
+        if isinstance(start, bool) or not isinstance(start, int) or not 0 <= start < max(data.size, 1):
+            raise ValueError("%s.core:sample_start = %r: must be a sample index in [0, %d)"
+                             % (where, start, data.size))
+        if "rfseek:slot" in a:
+            slot = a["rfseek:slot"]
+            if isinstance(slot, bool) or not isinstance(slot, int) or not 0 <= slot < 2**63:
+                raise ValueError("%s.rfseek:slot = %r: must be an integer >= 0" % (where, slot))
+        for k in ("time", "heading"):
+            if "rfseek:" + k in a:
+                _number("%s.rfseek:%s" % (where, k), a["rfseek:" + k], -1e12, 1e12)
     return data, meta
 
 

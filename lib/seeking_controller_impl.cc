@@ -122,12 +122,21 @@ void seeking_controller_impl::handle_meas(const pmt::pmt_t& msg)
         drop("meas", "no numeric 'freq_hz' or boolean 'valid'", msg);
     m.freq_hz = ok ? pmt::to_double(freq) : 0.0;
     m.valid = ok && pmt::to_bool(valid) && std::isfinite(m.freq_hz);
-    if (number(snr))
-        m.snr_db = pmt::to_double(snr);
-    if (number(power))
-        m.power_db = pmt::to_double(power);
-    if (number(time))
-        m.time_s = pmt::to_double(time);
+    if (!std::isfinite(m.freq_hz))
+        m.freq_hz = 0.0;
+    // A NaN or infinite snr_db, power_db or time cannot be trusted, nor the frequency
+    // measured with it: answered as an invalid measurement, and never passed on.
+    for (const auto& [v, field] : { std::make_pair(snr, &m.snr_db),
+                                    std::make_pair(power, &m.power_db),
+                                    std::make_pair(time, &m.time_s) }) {
+        if (!number(v))
+            continue;
+        const double x = pmt::to_double(v);
+        if (std::isfinite(x))
+            *field = x;
+        else
+            m.valid = false;
+    }
     if (number(heading) && std::isfinite(pmt::to_double(heading))) {
         m.has_heading = true;
         m.heading_rad = pmt::to_double(heading);

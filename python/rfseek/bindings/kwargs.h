@@ -26,7 +26,29 @@ T rfseek_from_kwargs(const pybind11::kwargs& kw, const char* type_name)
             !py::hasattr(self, key.c_str()))
             throw py::type_error(std::string(type_name) +
                                  "() got an unexpected keyword argument '" + key + "'");
-        py::setattr(self, key.c_str(), item.second);
+        try {
+            py::setattr(self, key.c_str(), item.second);
+        } catch (py::error_already_set& e) {
+            if (!e.matches(PyExc_TypeError))
+                throw;
+            // A wrong type is a bad value like any other: ValueError naming the field.
+            const py::object current = py::getattr(self, key.c_str());
+            const std::string type =
+                current.is_none()
+                    ? "NoneType"
+                    : py::cast<std::string>(current.get_type().attr("__name__"));
+            std::string expected = type == "int"     ? "an integer (counts, lengths and "
+                                                       "seeds: >= 0)"
+                                   : type == "float" ? "a number"
+                                   : type == "bool"  ? "True or False"
+                                   : type == "str"   ? "a string"
+                                                     : "a number or None";
+            if (!current.is_none())
+                expected += ", default " + py::cast<std::string>(py::repr(current));
+            throw py::value_error(std::string(type_name) + "." + key + " = " +
+                                  py::cast<std::string>(py::repr(item.second)) +
+                                  ": must be " + expected);
+        }
     }
     return value;
 }

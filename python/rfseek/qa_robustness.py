@@ -1,0 +1,242 @@
+#!/usr/bin/python3
+#
+# Copyright 2026 gr-rfseek authors.
+# SPDX-License-Identifier: GPL-3.0-or-later
+#
+"""Every bad input answered (issue 12): the table of docs/robustness.md, one check per row.
+
+Each row is an input tried and the answer the module gives. The check either tries it
+here or runs the QA test named in the row (which tries it with more detail). The test
+also checks that docs/robustness.md lists every row, so the table and the checks stay
+one: `qa_robustness.py --markdown` prints the table.
+"""
+
+import importlib
+import math
+import os
+import subprocess
+import sys
+import time
+import unittest
+
+import numpy as np
+import pmt
+from gnuradio import blocks, gr, gr_unittest, rfseek
+from gnuradio.rfseek.vehicle_bridge import vehicle_bridge
+
+SOURCE = os.environ.get("RFSEEK_SOURCE_DIR", os.path.join(os.path.dirname(__file__), "..", ".."))
+BUILD = os.environ.get("RFSEEK_BUILD_DIR", os.path.join(SOURCE, "build"))
+NAN, INF = float("nan"), float("inf")
+
+
+def raises(fn, word):
+    """fn() raises ValueError whose text names word."""
+    def check(tc):
+        with tc.assertRaisesRegex(ValueError, word):
+            fn()
+    return check
+
+
+def qa(module, test):
+    """Runs test `module.test` (another QA file) and requires it to pass."""
+    def check(tc):
+        mod = importlib.import_module("qa_" + module)
+        cls = getattr(mod, "qa_" + module)
+        result = unittest.TestResult()
+        cls(test).run(result)
+        tc.assertTrue(result.wasSuccessful() and not result.skipped,
+                      "%s.%s: %s" % (module, test, result.errors + result.failures +
+                                     result.skipped))
+    return check
+
+
+def program(args, word):
+    """A program answers args with one line naming word, exit status 2, nothing written."""
+    def check(tc):
+        p = subprocess.run(args, capture_output=True, text=True, timeout=120, cwd=BUILD)
+        tc.assertEqual(p.returncode, 2, p.stderr)
+        lines = [line for line in p.stderr.splitlines() if line.strip()]
+        tc.assertEqual(len(lines), 1, p.stderr)
+        tc.assertIn(word, lines[0])
+        tc.assertNotIn("Traceback", p.stderr)
+    return check
+
+
+def estimator_windows(tc):
+    est = rfseek.tone_estimator(1e5, 256, 1024)
+    tiny = np.full(256, 1e-45, dtype=np.complex64)  # denormals
+    huge = np.full(256, 3e38, dtype=np.complex64)
+    for x in (np.zeros(256), np.full(256, np.nan), np.full(256, np.inf), tiny, huge,
+              np.r_[np.ones(255), np.nan]):
+        e = est.estimate(np.asarray(x, dtype=np.complex64))
+        tc.assertTrue(math.isfinite(e.freq_hz))
+        tc.assertFalse(math.isnan(e.snr_db) or math.isnan(e.power_db))
+        if not np.all(np.isfinite(x)) or not np.any(x):
+            tc.assertFalse(e.valid)
+
+
+def controller_nan_fields(tc):
+    ctl = rfseek.seeking_controller(rfseek.seeker_config())
+    dbg = blocks.message_debug()
+    tb = gr.top_block()
+    tb.msg_connect(ctl, "telemetry", dbg, "store")
+    tb.msg_connect(ctl, "cmd", dbg, "store")
+    tb.start()
+    try:
+        for i, (k, v) in enumerate((("time", NAN), ("snr_db", INF), ("power_db", NAN),
+                                    ("freq_hz", INF), ("heading", NAN))):
+            d = {"slot": i, "freq_hz": 100.0, "valid": True, "snr_db": 10.0,
+                 "power_db": -10.0, "time": 0.05 * i}
+            d[k] = v
+            ctl._post(pmt.intern("meas"), pmt.to_pmt(d))
+        deadline = time.monotonic() + 10
+        while dbg.num_messages() < 10 and time.monotonic() < deadline:
+            time.sleep(0.02)
+    finally:
+        tb.stop()
+        tb.wait()
+    tc.assertEqual(dbg.num_messages(), 10)
+    for i in range(dbg.num_messages()):
+        for v in pmt.to_python(dbg.get_message(i)).values():
+            if isinstance(v, float):
+                tc.assertTrue(math.isfinite(v))
+    tc.assertEqual(ctl.invalid_count(), 4)  # all but the NaN heading (then not used)
+
+
+MC = os.path.join(BUILD, "apps", "rfseek-montecarlo")
+SIM = [sys.executable, os.path.join(SOURCE, "apps", "rfseek-sim"), "--no-figures"]
+LIVE = [sys.executable, os.path.join(SOURCE, "apps", "rfseek-live")]
+
+# (area, input, answer, check)
+ROWS = [
+    # --- parameters
+    ("parameters", "`scenario(snr_db=nan)` / `inf`, then any block or `validate()`",
+     "ValueError `scenario.snr_db = nan: must be in [-100, 100]`",
+     raises(lambda: rfseek.scenario(snr_db=NAN).validate(), "snr_db")),
+    ("parameters", "`scenario(initial_distance_m=-5)`, `0`, `1e30`",
+     "ValueError naming the field, range [1, 1e7] m",
+     lambda tc: [raises(lambda: rfseek.scenario(initial_distance_m=v).validate(),
+                        "initial_distance_m")(tc) for v in (-5.0, 0.0, 1e30)]),
+    ("parameters", "`scenario(fft_len=100)` (smaller than `window_len` 1000)",
+     "ValueError `scenario.window_len = 1000: must be in [3, 100]`",
+     raises(lambda: rfseek.scenario(fft_len=100).validate(), "window_len")),
+    ("parameters", "`scenario(seed=-1)`, `snr_db='loud'`, `num_scatterers=2.5`, `add_noise='yes'` (wrong types)",
+     "ValueError naming the field and the type expected",
+     lambda tc: [raises(lambda: rfseek.scenario(**{k: v}), k)(tc) for k, v in
+                 (("seed", -1), ("snr_db", "loud"), ("num_scatterers", 2.5),
+                  ("add_noise", "yes"))]),
+    ("parameters", "`scenario.set('snr_db', 'nan')`, `set('nope', '1')`",
+     "ValueError naming the field (range, or the known keys)",
+     lambda tc: [raises(lambda: (lambda s: (s.set("snr_db", "nan"), s.validate()))(rfseek.scenario()), "snr_db")(tc),
+                 raises(lambda: rfseek.scenario().set("nope", "1"), "nope")(tc)]),
+    ("parameters", "`tone_estimator(1e5, 1000, 512)` (fft_len < window_len), `samp_rate=nan`, `window='kaiser'`",
+     "ValueError naming window_len / samp_rate / window and the allowed values",
+     lambda tc: [raises(lambda: rfseek.tone_estimator(1e5, 1000, 512), "window_len")(tc),
+                 raises(lambda: rfseek.tone_estimator(NAN, 100, 512), "samp_rate")(tc),
+                 raises(lambda: rfseek.tone_estimator(1e5, 100, 512, "kaiser"), "window")(tc)]),
+    ("parameters", "`doppler_estimator` window_len 2 or > fft_len, samp_rate 0, unknown window, interpolator or alignment, period < window",
+     "ValueError naming the parameter", qa("doppler_estimator", "test_bad_parameters_raise_value_error")),
+    ("parameters", "`seeker_config(delta_rad=nan)`, `strategy='bogus'`, `m_slots=0`, `m_slots='x'`",
+     "ValueError `seeker_config.delta_rad = nan: must be in (0, pi/2)` etc.",
+     lambda tc: [raises(lambda: rfseek.seeking_controller(rfseek.seeker_config(**kw)), word)(tc)
+                 for kw, word in ((dict(delta_rad=NAN), "delta_rad"),
+                                  (dict(strategy="bogus"), "strategy"),
+                                  (dict(m_slots=0), "m_slots"), (dict(m_slots="x"), "m_slots"))]),
+    ("parameters", "`channel_source(mode='bogus')`, `speedup=0` / `nan` / `1e7`, a bad scenario",
+     "ValueError naming mode / speedup / the scenario field",
+     lambda tc: [raises(lambda: rfseek.channel_source(rfseek.scenario(), mode="bogus"), "mode")(tc),
+                 raises(lambda: rfseek.channel_source(rfseek.scenario(), speedup=NAN), "speedup")(tc),
+                 raises(lambda: rfseek.channel_source(rfseek.scenario(window_len=2)), "window_len")(tc)]),
+    ("parameters", "`burst_detector(threshold_db=nan)`, `average_len=1`",
+     "ValueError naming the parameter and its range",
+     lambda tc: [raises(lambda: rfseek.burst_detector(NAN), "threshold_db")(tc),
+                 raises(lambda: rfseek.burst_detector(2.0, 1000, 1), "average_len")(tc)]),
+    ("parameters", "`vehicle_bridge(peer_port=70000)`, `nav_timeout=0`, `max_datagram=10`, `max_rate_hz=nan`",
+     "ValueError naming the parameter and its range", qa("vehicle_bridge", "test_bad_parameters")),
+    # --- messages
+    ("messages", "`channel_source` cmd: not a dict, no numeric heading, NaN heading, non-integer slot",
+     "logged once per kind, counted (`malformed_count()`), dropped; the UAV flies on",
+     qa("channel_source", "test_malformed_cmds_are_dropped_and_counted")),
+    ("messages", "`channel_source` cmd for another slot (lockstep)",
+     "ignored, counted (`stale_count()`)", qa("channel_source", "test_stale_cmd_is_ignored")),
+    ("messages", "`seeking_controller` meas: garbage, no slot, no freq; nav: heading 'north'",
+     "logged once, counted (`malformed_count()`), dropped; the block keeps running",
+     qa("closed_loop", "test_invalid_and_malformed_messages")),
+    ("messages", "`seeking_controller` meas with NaN/inf `time`, `snr_db`, `power_db`, `freq_hz` or `heading`",
+     "answered as an invalid measurement (`invalid_count()`); no NaN in cmd or telemetry",
+     controller_nan_fields),
+    ("messages", "any PMT built from fuzz bytes into cmd / meas / nav",
+     "no crash, no NaN published (libFuzzer, `scripts/fuzz.sh`: see Fuzzing below)",
+     lambda tc: tc.assertTrue(os.path.exists(os.path.join(SOURCE, "lib", "fuzz", "fuzz_seeking_controller.cc")))),
+    ("messages", "vehicle datagrams: not JSON, wrong type, heading 'north', 400, NaN; from a stranger",
+     "logged once per kind, counted (`dropped[...]`), dropped", qa("vehicle_bridge", "test_round_trip_and_bad_datagrams")),
+    ("messages", "vehicle datagram > 1024 bytes; a flood of 100 reports at once",
+     "dropped (`oversize`); beyond 50/s after a 1 s burst dropped (`rate`)", qa("vehicle_bridge", "test_size_and_rate_bounds")),
+    # --- samples
+    ("samples", "`tone_estimator` windows: all zero, all NaN, all inf, denormals, 3e38, one NaN",
+     "`valid = False` where not finite or empty, frequency always finite, no NaN", estimator_windows),
+    ("samples", "`doppler_estimator` windows: zero, NaN, cut short by the next beacon",
+     "`valid = False`, counted, no NaN in meas", qa("doppler_estimator", "test_degenerate_windows_are_invalid_without_nan")),
+    ("samples", "SigMF recordings: wrong datatype, no sample rate, mutated metadata and data",
+     "ValueError naming the field (scripts/fuzz_python.py: 0 other exceptions)",
+     qa("sigmf", "test_bad_recording_is_refused")),
+    # --- programs
+    ("programs", "`rfseek-montecarlo --runs 0`, `--runs 2.5`, `--threads 0`, `--seed abc`, `--set snr=3`, `--set snr_db=nan`, unwritable `--csv`",
+     "one line naming the option, exit 2, no output file", qa("montecarlo", "test_bad_options_exit_2_with_a_message")),
+    ("programs", "`rfseek-montecarlo --scheduler tcp://127.0.0.1:9` (nothing there)",
+     "one line `cannot reach the Dask scheduler at ...`, exit 2", qa("study_backends", "test_unreachable_scheduler_is_one_line_and_exit_2")),
+    ("programs", "`rfseek-sim --set snr_db=nan`",
+     "one line naming snr_db, exit 2", program(SIM + ["--set", "snr_db=nan"], "snr_db")),
+    ("programs", "`rfseek-sim --set unknown=1`, `--strategy bogus`, `--seed -1`",
+     "one line naming it, exit 2",
+     lambda tc: [program(SIM + a, w)(tc) for a, w in ((["--set", "unknown=1"], "unknown"),
+                                                    (["--strategy", "bogus"], "bogus"),
+                                                    (["--seed", "-1"], "--seed"))]),
+    ("programs", "`rfseek-sim --out /etc/passwd/x` (not writable)",
+     "one line, exit 2, before the flight", program(SIM + ["--out", "/etc/passwd/x"], "--out")),
+    ("programs", "`rfseek-live --source bogus`, `--source file` without `--file`, `--window-len 2`",
+     "one line, exit 2", lambda tc: [program(LIVE + ["--source", "bogus"], "bogus")(tc),
+                                     qa("live", "test_bad_arguments")(tc)]),
+    ("programs", "`rfseek-live --source uhd` / `osmosdr` with no radio attached",
+     "one line `no UHD device found`, exit 3", qa("live", "test_no_device_is_a_clean_error")),
+]
+
+
+class qa_robustness(gr_unittest.TestCase):
+    pass
+
+
+def _make(i, row):
+    def test(self):
+        row[3](self)
+    test.__doc__ = row[1]
+    return test
+
+
+for _i, _row in enumerate(ROWS):
+    setattr(qa_robustness, "test_%02d_%s" % (_i, _row[0]), _make(_i, _row))
+
+
+def _table_test(self):
+    doc = open(os.path.join(SOURCE, "docs", "robustness.md")).read()
+    for area, what, answer, _ in ROWS:
+        self.assertIn("| %s | %s |" % (what, answer), doc, "docs/robustness.md lacks: " + what)
+
+
+qa_robustness.test_table_in_docs = _table_test
+
+
+def markdown():
+    out = []
+    for area in ("parameters", "messages", "samples", "programs"):
+        out.append("\n### %s\n\n| input | answer |\n| --- | --- |" % area.capitalize())
+        out += ["| %s | %s |" % (w, a) for ar, w, a, _ in ROWS if ar == area]
+    return "\n".join(out)
+
+
+if __name__ == "__main__":
+    sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+    if "--markdown" in sys.argv:
+        print(markdown())
+    else:
+        gr_unittest.run(qa_robustness)

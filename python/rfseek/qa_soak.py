@@ -24,6 +24,10 @@ BUILD = os.environ.get("RFSEEK_BUILD_DIR", os.path.join(SOURCE, "build"))
 class qa_soak(gr_unittest.TestCase):
 
     def test_resident_memory_is_flat(self):
+        if os.environ.get("RFSEEK_SANITIZE"):
+            # ASan holds freed memory in its quarantine (256 MB): resident size says
+            # nothing there; its own leak and use-after-free checks stand in for this.
+            self.skipTest("resident size is not meaningful under AddressSanitizer")
         out = os.path.join(tempfile.mkdtemp(prefix="rfseek_soak_"), "soak.json")
         p = subprocess.run([sys.executable, os.path.join(SOURCE, "apps", "rfseek-soak"),
                             "--flowgraphs", "12", "--distance", "1000", "--strategy",

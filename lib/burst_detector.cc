@@ -99,7 +99,9 @@ void burst_detector::push(const std::complex<float>* x,
                 best_back = b;
             }
         }
-        const std::uint64_t start = k - best_back;
+        // Not back into the rest of the previous burst: starts increase by >= holdoff
+        // (found by fuzzing: with holdoff < average_len a start could repeat or go back).
+        const std::uint64_t start = std::max(k - best_back, d_rest_until);
         starts.push_back(start);
         d_rest_until = start + d_holdoff;
         d_need_quiet = true;

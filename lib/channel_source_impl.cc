@@ -115,7 +115,9 @@ void channel_source_impl::handle_cmd(const pmt::pmt_t& msg)
         drop("no numeric 'heading'", msg);
         return;
     }
-    const double heading = pmt::to_double(h);
+    // pmt::to_double throws for a uint64 (found by fuzzing): convert it here.
+    const double heading =
+        pmt::is_uint64(h) ? static_cast<double>(pmt::to_uint64(h)) : pmt::to_double(h);
     if (!std::isfinite(heading)) {
         drop("non-finite 'heading'", msg);
         return;

@@ -19,6 +19,13 @@ bool number(const pmt::pmt_t& v)
 {
     return pmt::is_real(v) || pmt::is_integer(v) || pmt::is_uint64(v);
 }
+
+// A number() as a double. pmt::to_double throws for a uint64 (found by fuzzing: a uint64
+// heading or frequency was an exception out of the message handler).
+double as_double(const pmt::pmt_t& v)
+{
+    return pmt::is_uint64(v) ? static_cast<double>(pmt::to_uint64(v)) : pmt::to_double(v);
+}
 } // namespace
 
 seeking_controller::sptr seeking_controller::make(const seeker_config& cfg)
@@ -80,11 +87,11 @@ void seeking_controller_impl::handle_nav(const pmt::pmt_t& msg)
         drop("nav", "not a dict", msg);
         return;
     }
-    if (!number(h) || !std::isfinite(pmt::to_double(h))) {
+    if (!number(h) || !std::isfinite(as_double(h))) {
         drop("nav", "no finite 'heading'", msg);
         return;
     }
-    d_nav_heading = pmt::to_double(h);
+    d_nav_heading = as_double(h);
     d_have_nav = true;
 }
 
@@ -120,7 +127,7 @@ void seeking_controller_impl::handle_meas(const pmt::pmt_t& msg)
     bool ok = number(freq) && pmt::is_bool(valid);
     if (!ok)
         drop("meas", "no numeric 'freq_hz' or boolean 'valid'", msg);
-    m.freq_hz = ok ? pmt::to_double(freq) : 0.0;
+    m.freq_hz = ok ? as_double(freq) : 0.0;
     m.valid = ok && pmt::to_bool(valid) && std::isfinite(m.freq_hz);
     if (!std::isfinite(m.freq_hz))
         m.freq_hz = 0.0;
@@ -131,15 +138,15 @@ void seeking_controller_impl::handle_meas(const pmt::pmt_t& msg)
                                     std::make_pair(time, &m.time_s) }) {
         if (!number(v))
             continue;
-        const double x = pmt::to_double(v);
+        const double x = as_double(v);
         if (std::isfinite(x))
             *field = x;
         else
             m.valid = false;
     }
-    if (number(heading) && std::isfinite(pmt::to_double(heading))) {
+    if (number(heading) && std::isfinite(as_double(heading))) {
         m.has_heading = true;
-        m.heading_rad = pmt::to_double(heading);
+        m.heading_rad = as_double(heading);
     } else if (d_have_nav) {
         m.has_heading = true;
         m.heading_rad = d_nav_heading;

@@ -407,6 +407,10 @@ tone_estimate tone_estimator::estimate(const std::complex<float>* x)
         return r;
     const double ym = std::abs(out[(peak + nfft - 1) % nfft]);
     const double yp = std::abs(out[(peak + 1) % nfft]);
+    // The largest bin of the band but not a peak of the spectrum: it is the skirt of a
+    // tone outside the band (at the band's edge; found by fuzzing), not a measurement.
+    if (d_fmax > d_fmin && (ym > y0 || yp > y0))
+        return r;
 
     double delta = 0.0; // bins
     if (m.ik == interp_kind::log_parabolic && ym > 0.0 && yp > 0.0) {
@@ -458,6 +462,11 @@ tone_estimate tone_estimator::estimate(const std::complex<float>* x)
         r.snr_db = 200.0;
     r.peak_bin = static_cast<int>(peak);
     r.valid = std::isfinite(r.freq_hz);
+    // Interpolation from a peak in the band's edge bin can land up to half a bin outside
+    // the band (found by fuzzing): a tone outside the band asked for is not a
+    // measurement.
+    if (d_fmax > d_fmin && (r.freq_hz < d_fmin || r.freq_hz > d_fmax))
+        r.valid = false;
     if (!r.valid)
         r = tone_estimate();
     return r;

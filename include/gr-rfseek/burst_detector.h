@@ -26,7 +26,9 @@ namespace rfseek {
  * the change point of the power over the last average_len samples (the maximum of the
  * cumulative excess over the threshold level, summed back from the detection).
  * After a detection the detector rests for holdoff samples from the burst start and
- * until the average has fallen below the level halfway (in dB) to the threshold.
+ * until the average has fallen below the level halfway (in dB) to the threshold; a start
+ * is never placed inside that rest, so starts increase by at least holdoff. A start may
+ * lie up to average_len - 1 samples before the chunk in which it is detected.
  */
 class RFSEEK_API burst_detector
 {

@@ -27,9 +27,10 @@ struct RFSEEK_API tone_estimate {
     double snr_db = -100.0; //!< per-sample SNR of the tone against the rest of the window
     double power_db = -300.0; //!< tone power per sample (10 log10 |a|^2)
     double noise_power_db =
-        -300.0;         //!< noise power per sample (window energy not in the tone)
-    int peak_bin = -1;  //!< FFT bin of the coarse peak
-    bool valid = false; //!< false on zero, NaN or Inf input or an empty band
+        -300.0;        //!< noise power per sample (window energy not in the tone)
+    int peak_bin = -1; //!< FFT bin of the coarse peak
+    //! false on zero, NaN or Inf input, an empty band, or an estimate outside the band
+    bool valid = false;
 };
 
 class RFSEEK_API tone_estimator

@@ -11,6 +11,7 @@
 #include <gtest/gtest.h>
 #include <algorithm>
 #include <cmath>
+#include <complex>
 #include <cstdlib>
 #include <stdexcept>
 #include <vector>
@@ -82,4 +83,41 @@ TEST(burst_detector, bad_parameters_throw)
     EXPECT_THROW(burst_detector(2.0, 0), std::invalid_argument);
     EXPECT_THROW(burst_detector(2.0, 100, 4), std::invalid_argument);
     EXPECT_THROW(burst_detector(2.0, 100, 256, 8), std::invalid_argument);
+}
+
+// Found by fuzzing (lib/fuzz/fuzz_burst_detector.cc): with a holdoff shorter than the
+// average, a start was back-dated into the rest of the previous burst (a start could
+// repeat or go back). Bursty streams of random on/off runs, pushed in random chunks.
+TEST(burst_detector, starts_increase_by_the_holdoff_even_when_it_is_short)
+{
+    std::srand(7);
+    int bursts = 0;
+    for (int seed = 0; seed < 300; ++seed) {
+        const std::uint64_t holdoff = 1 + std::rand() % 6;
+        burst_detector det(3.0, holdoff, 8, 16, 2);
+        std::vector<std::uint64_t> starts;
+        std::uint64_t offset = 0;
+        bool on = false;
+        for (int chunk = 0; chunk < 60; ++chunk) {
+            std::vector<std::complex<float>> x(1 + std::rand() % 40);
+            for (auto& s : x) {
+                if (std::rand() % 4 == 0)
+                    on = !on;
+                const float a = on ? 10.0f : 0.1f + 0.01f * (std::rand() % 10);
+                s = { a, 0.0f };
+            }
+            const std::size_t before = starts.size();
+            det.push(x.data(), x.size(), offset, starts);
+            for (std::size_t i = before; i < starts.size(); ++i) {
+                EXPECT_LT(starts[i], offset + x.size());
+                EXPECT_GE(starts[i] + 7, offset); // the change point looks back < 8
+                if (i > 0)
+                    EXPECT_GE(starts[i], starts[i - 1] + holdoff)
+                        << "seed " << seed << " holdoff " << holdoff;
+            }
+            offset += x.size();
+        }
+        bursts += static_cast<int>(starts.size());
+    }
+    EXPECT_GT(bursts, 300); // the streams did trigger
 }

@@ -176,6 +176,30 @@ TEST(tone_estimator, search_band_ignores_stronger_tones_outside)
     EXPECT_NEAR(est.estimate(a).freq_hz, 20000.0, 0.5);
 }
 
+// Found by fuzzing (lib/fuzz/fuzz_tone_estimator.cc): the skirt of a tone just outside
+// the band makes the band's edge bin its largest, and the interpolation carried the
+// estimate outside the band (or left it biased at the edge).
+TEST(tone_estimator, a_tone_outside_the_band_is_not_a_valid_estimate)
+{
+    rng g(3);
+    tone_estimator est(FS, N, NFFT, "rectangular", "parabolic", -1000.0, 1000.0);
+    const double bin = FS / NFFT; // 24.4 Hz
+    // Within a bin or two outside the edge (further out, a rectangular window's sidelobes
+    // are local peaks inside the band: the band is a search range, not a filter).
+    for (double f : { 1000.0 + 0.4 * bin, -1000.0 - 0.4 * bin, 1030.0, -1000.0 - bin }) {
+        const tone_estimate e = est.estimate(tone(f, 0.3, 0.0, g));
+        EXPECT_FALSE(e.valid) << f << " gave " << e.freq_hz;
+        EXPECT_TRUE(std::isfinite(e.freq_hz));
+    }
+    // Inside by more than half a bin (within half a bin of the edge, the peak bin may lie
+    // outside, and the tone is refused).
+    for (double f : { 1000.0 - 2.0 * bin, -1000.0 + bin, 0.0, 512.3 }) {
+        const tone_estimate e = est.estimate(tone(f, 0.3, 0.0, g));
+        EXPECT_TRUE(e.valid) << f << " gave " << e.freq_hz;
+        EXPECT_NEAR(e.freq_hz, f, 1.0);
+    }
+}
+
 TEST(tone_estimator, degenerate_input_is_invalid_and_finite)
 {
     tone_estimator est(FS, N, NFFT, "rectangular", "newton");

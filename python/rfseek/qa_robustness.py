@@ -103,6 +103,41 @@ def controller_nan_fields(tc):
     tc.assertEqual(ctl.invalid_count(), 4)  # all but the NaN heading (then not used)
 
 
+def uint64_numbers(tc):
+    """uint64 PMTs where a number is expected (pmt.to_double throws for them)."""
+    ctl = rfseek.seeking_controller(rfseek.seeker_config())
+    dbg = blocks.message_debug()
+    src = rfseek.channel_source(rfseek.scenario(initial_distance_m=300, window_len=64,
+                                                fft_len=64), lockstep=False)
+    tb = gr.top_block()
+    tb.connect(src, blocks.null_sink(gr.sizeof_gr_complex))
+    tb.msg_connect(ctl, "cmd", dbg, "store")
+    tb.start()
+    try:
+        ctl._post(pmt.intern("nav"), pmt.to_pmt({"heading": 1.0}))
+        d = pmt.make_dict()
+        for k, v in (("slot", pmt.from_uint64(0)), ("freq_hz", pmt.from_uint64(100)),
+                     ("valid", pmt.PMT_T), ("time", pmt.from_uint64(1)),
+                     ("heading", pmt.from_uint64(1)), ("snr_db", pmt.from_uint64(20))):
+            d = pmt.dict_add(d, pmt.intern(k), v)
+        ctl._post(pmt.intern("meas"), d)
+        nav = pmt.dict_add(pmt.make_dict(), pmt.intern("heading"), pmt.from_uint64(2))
+        ctl._post(pmt.intern("nav"), nav)
+        cmd = pmt.dict_add(pmt.make_dict(), pmt.intern("heading"), pmt.from_uint64(3))
+        src._post(pmt.intern("cmd"), cmd)
+        deadline = time.monotonic() + 10
+        while dbg.num_messages() < 1 and time.monotonic() < deadline:
+            time.sleep(0.02)
+        time.sleep(0.2)
+    finally:
+        tb.stop()
+        tb.wait()
+    tc.assertEqual(dbg.num_messages(), 1)
+    tc.assertEqual(ctl.malformed_count(), 0)
+    tc.assertEqual(ctl.meas_count(), 1)
+    tc.assertEqual(src.malformed_count(), 0)
+
+
 MC = os.path.join(BUILD, "apps", "rfseek-montecarlo")
 SIM = [sys.executable, os.path.join(SOURCE, "apps", "rfseek-sim"), "--no-figures"]
 LIVE = [sys.executable, os.path.join(SOURCE, "apps", "rfseek-live")]
@@ -165,6 +200,9 @@ ROWS = [
     ("messages", "`seeking_controller` meas with NaN/inf `time`, `snr_db`, `power_db`, `freq_hz` or `heading`",
      "answered as an invalid measurement (`invalid_count()`); no NaN in cmd or telemetry",
      controller_nan_fields),
+    ("messages", "cmd / meas / nav whose heading, freq_hz, time or snr_db is a uint64 PMT",
+     "taken as the number (`pmt::to_double` throws for a uint64: found by fuzzing, was an exception out of the handler)",
+     uint64_numbers),
     ("messages", "any PMT built from fuzz bytes into cmd / meas / nav",
      "no crash, no NaN published (libFuzzer, `scripts/fuzz.sh`: see Fuzzing below)",
      lambda tc: tc.assertTrue(os.path.exists(os.path.join(SOURCE, "lib", "fuzz", "fuzz_seeking_controller.cc")))),

@@ -4,7 +4,7 @@
  */
 
 /* BINDTOOL_HEADER_FILE(burst_detector.h) */
-/* BINDTOOL_HEADER_FILE_HASH(d403428fede693788689d996b071a6f5) */
+/* BINDTOOL_HEADER_FILE_HASH(e58db0843e83737f8768074fdf7b41a3) */
 
 #include <gr-rfseek/burst_detector.h>
 #include <pybind11/complex.h>

@@ -4,7 +4,7 @@
  */
 
 /* BINDTOOL_HEADER_FILE(tone_estimator.h) */
-/* BINDTOOL_HEADER_FILE_HASH(bd1d0b2ec596df6a63573ea90577d250) */
+/* BINDTOOL_HEADER_FILE_HASH(a0e9f958a69ac8800663c3a3b554488e) */
 
 #include <gr-rfseek/tone_estimator.h>
 #include <pybind11/complex.h>

@@ -1,0 +1,63 @@
+#!/usr/bin/env bash
+# Fuzzing: libFuzzer harnesses of the C++ parsers of outside data (lib/fuzz/) and the
+# Python mutation fuzzer (scripts/fuzz_python.py).
+#
+#   bash scripts/fuzz.sh            # 30 s per harness (what CI runs)
+#   bash scripts/fuzz.sh 3600       # longer: seconds per harness
+#
+# Builds lib/fuzz/ with clang (Debian clang, libFuzzer + ASan + UBSan) in build-fuzz/
+# (RFSEEK_FUZZ_BUILD), runs each harness from its seed corpus (lib/fuzz/corpus/<name>/,
+# copied: new inputs go to build-fuzz/corpus/), prints the executions reached, and exits
+# non-zero if any harness found a crash (the input is in build-fuzz/findings/).
+set -euo pipefail
+here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+build="${RFSEEK_FUZZ_BUILD:-$here/build-fuzz}"
+jobs="${RFSEEK_JOBS:-$(nproc)}"
+seconds="${1:-30}"
+case "$seconds" in '' | *[!0-9]*) echo "usage: fuzz.sh [SECONDS per harness]" >&2; exit 2 ;; esac
+
+echo "==> fuzzing build (clang, libFuzzer + ASan + UBSan) in $build"
+mkdir -p "$build"
+CC=clang CXX=clang++ cmake -S "$here" -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+    -DRFSEEK_FUZZ=ON -DPython3_EXECUTABLE=/usr/bin/python3 >"$build/configure.log" 2>&1 ||
+    {
+        cat "$build/configure.log"
+        exit 1
+    }
+cmake --build "$build" -j "$jobs" --target rfseek-fuzzers
+
+status=0
+mkdir -p "$build/findings" "$build/corpus"
+summary=""
+for f in fuzz_channel_source_cmd fuzz_seeking_controller fuzz_tone_estimator \
+    fuzz_burst_detector; do
+    corpus="$build/corpus/$f"
+    mkdir -p "$corpus"
+    [ -d "$here/lib/fuzz/corpus/$f" ] && cp -n "$here/lib/fuzz/corpus/$f"/* "$corpus/" 2>/dev/null || true
+    echo "==> $f, $seconds s"
+    log="$build/$f.log"
+    if "$build/lib/fuzz/$f" -max_total_time="$seconds" -rss_limit_mb=2048 -timeout=10 \
+        -print_final_stats=1 -artifact_prefix="$build/findings/$f-" "$corpus" >"$log" 2>&1; then
+        result="0 crashes"
+    else
+        result="FOUND A CRASH (see $log and $build/findings/)"
+        status=1
+        tail -40 "$log"
+    fi
+    execs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$log" | tail -1)
+    line="$f: ${execs:-?} executions in $seconds s, $result"
+    echo "$line"
+    summary+="$line"$'\n'
+done
+
+echo "==> Python parsers (scripts/fuzz_python.py), $seconds s each"
+if ! PYTHONPATH="$here/build/python:${PYTHONPATH:-}" /usr/bin/python3 \
+    "$here/scripts/fuzz_python.py" --seconds "$seconds" --out "$build/findings" \
+    >"$build/fuzz_python.log" 2>&1; then
+    status=1
+fi
+cat "$build/fuzz_python.log"
+summary+="$(grep '^fuzz_python' "$build/fuzz_python.log")"$'\n'
+echo "==> fuzzing summary"
+printf '%s' "$summary"
+exit $status

@@ -41,6 +41,7 @@ packages=(
     gnuradio gnuradio-dev libvolk2-dev libfftw3-dev libuhd-dev gr-osmosdr
     pybind11-dev libgtest-dev libboost-all-dev libspdlog-dev libfmt-dev libgmp-dev
     python3-numpy python3-matplotlib python3-yaml python3-distributed
+    clang libclang-rt-14-dev
 )
 if [ "${RFSEEK_SKIP_APT:-0}" != 1 ]; then
     missing=()

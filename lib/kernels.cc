@@ -276,32 +276,11 @@ struct lanes {
         s3 = (s3 << 11) | (s3 >> 21);
         return r;
     }
-};
-} // namespace
-
-#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
-__attribute__((target_clones("avx2", "default")))
-#endif
-void add_gaussian_noise(std::complex<float>* out,
-                        std::uint32_t len,
-                        float sigma,
-                        std::uint64_t key)
-{
-    lanes g;
-    std::uint64_t x = key;
-    for (int i = 0; i < 8; ++i) {
-        const std::uint64_t a = splitmix(x), b = splitmix(x);
-        g.s0[i] = static_cast<unsigned>(a);
-        g.s1[i] = static_cast<unsigned>(a >> 32);
-        g.s2[i] = static_cast<unsigned>(b);
-        g.s3[i] = static_cast<unsigned>(b >> 32) | 1u; // never all zero
-    }
-    float* o = reinterpret_cast<float*>(out);
-    const v8i lo_idx = { 0, 8, 1, 9, 2, 10, 3, 11 };
-    const v8i hi_idx = { 4, 12, 5, 13, 6, 14, 7, 15 };
-    const float pi4 = 0.78539816340f;
-    for (std::uint32_t base = 0; base < len; base += 8) {
-        const v8u r1 = g.next(), r2 = g.next();
+    // Eight complex normals sigma (g1 + j g2): Box-Muller, one draw of two steps.
+    __attribute__((always_inline)) void normals(float sigma, v8f& re, v8f& im)
+    {
+        const float pi4 = 0.78539816340f;
+        const v8u r1 = next(), r2 = next();
         // u1 in (0, 1]: 24 bits plus half a step; psi in [-pi/4, pi/4); quadrant from 2
         // bits.
         const v8f u1 = __builtin_convertvector((v8i)(r1 >> 8), v8f) * 5.9604645e-08f +
@@ -323,7 +302,41 @@ void add_gaussian_noise(std::complex<float>* out,
         const v8i q1 = (v8i)(q == 1u), q2 = (v8i)(q == 2u), q3 = (v8i)(q == 3u);
         v8f cr = q1 ? -s : (q2 ? -c : (q3 ? s : c));
         v8f sr = q1 ? c : (q2 ? -s : (q3 ? -c : s));
-        const v8f re = rad * cr, im = rad * sr;
+        re = rad * cr;
+        im = rad * sr;
+    }
+};
+
+__attribute__((always_inline)) inline lanes seed_lanes(std::uint64_t key)
+{
+    lanes g;
+    std::uint64_t x = key;
+    for (int i = 0; i < 8; ++i) {
+        const std::uint64_t a = splitmix(x), b = splitmix(x);
+        g.s0[i] = static_cast<unsigned>(a);
+        g.s1[i] = static_cast<unsigned>(a >> 32);
+        g.s2[i] = static_cast<unsigned>(b);
+        g.s3[i] = static_cast<unsigned>(b >> 32) | 1u; // never all zero
+    }
+    return g;
+}
+} // namespace
+
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+__attribute__((target_clones("avx2", "default")))
+#endif
+void add_gaussian_noise(std::complex<float>* out,
+                        std::uint32_t len,
+                        float sigma,
+                        std::uint64_t key)
+{
+    lanes g = seed_lanes(key);
+    float* o = reinterpret_cast<float*>(out);
+    const v8i lo_idx = { 0, 8, 1, 9, 2, 10, 3, 11 };
+    const v8i hi_idx = { 4, 12, 5, 13, 6, 14, 7, 15 };
+    for (std::uint32_t base = 0; base < len; base += 8) {
+        v8f re, im;
+        g.normals(sigma, re, im);
         const std::uint32_t n = len - base < 8 ? len - base : 8;
         if (n == 8) {
             v8f a, b;
@@ -337,6 +350,175 @@ void add_gaussian_noise(std::complex<float>* out,
             for (std::uint32_t k = 0; k < n; ++k) {
                 o[2 * (base + k)] += re[k];
                 o[2 * (base + k) + 1] += im[k];
+            }
+        }
+    }
+}
+
+namespace {
+typedef double v4d __attribute__((vector_size(32)));
+typedef float v4f __attribute__((vector_size(16)));
+
+// add_tones' tables for paths [0, np), four paths per vector: the same double
+// recurrences, element by element, as add_tones' scalar loops (so the same floats),
+// with four independent chains in flight instead of one.
+__attribute__((always_inline)) inline void tone_tables(const std::complex<double>* amp,
+                                                       const double* cyc,
+                                                       std::uint32_t np,
+                                                       float (*bre)[BLOCK],
+                                                       float (*bim)[BLOCK],
+                                                       double* ar,
+                                                       double* ai,
+                                                       double* sr,
+                                                       double* si)
+{
+    for (std::uint32_t p0 = 0; p0 < np; p0 += 4) {
+        const std::uint32_t cnt = np - p0 < 4 ? np - p0 : 4;
+        v4d cr = { 1, 1, 1, 1 }, ci = { 0, 0, 0, 0 };
+        for (std::uint32_t i = 0; i < cnt; ++i) {
+            const double w = 2.0 * M_PI * cyc[p0 + i];
+            cr[i] = std::cos(w);
+            ci[i] = std::sin(w);
+        }
+        v4d pr = { 1, 1, 1, 1 }, pi = { 0, 0, 0, 0 };
+        for (std::uint32_t b = 0; b < BLOCK; ++b) {
+            const v4f fr = __builtin_convertvector(pr, v4f);
+            const v4f fi = __builtin_convertvector(pi, v4f);
+            for (std::uint32_t i = 0; i < cnt; ++i) {
+                bre[p0 + i][b] = fr[i];
+                bim[p0 + i][b] = fi[i];
+            }
+            const v4d t = pr * cr - pi * ci;
+            pi = pr * ci + pi * cr;
+            pr = t;
+        }
+        v4d qr = cr, qi = ci;
+        for (std::uint32_t k = 1; k < BLOCK; k *= 2) {
+            const v4d t = qr * qr - qi * qi;
+            qi = 2.0 * qr * qi;
+            qr = t;
+        }
+        for (std::uint32_t i = 0; i < 4; ++i) { // padding lanes: zero amplitude
+            sr[p0 + i] = qr[i];
+            si[p0 + i] = qi[i];
+            ar[p0 + i] = i < cnt ? amp[p0 + i].real() : 0.0;
+            ai[p0 + i] = i < cnt ? amp[p0 + i].imag() : 0.0;
+        }
+    }
+}
+} // namespace
+
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+__attribute__((target_clones("avx2", "default")))
+#endif
+void tones_and_noise(std::complex<float>* out,
+                     std::uint32_t len,
+                     std::uint32_t tone_len,
+                     const std::complex<double>* amp,
+                     const double* cyc,
+                     std::uint32_t paths,
+                     bool noise,
+                     float sigma,
+                     std::uint64_t key)
+{
+    if (len == 0)
+        return;
+    if (tone_len > len)
+        tone_len = len;
+    if (paths == 0)
+        tone_len = 0;
+    alignas(32) float bre[MAX_PATHS][BLOCK];
+    alignas(32) float bim[MAX_PATHS][BLOCK];
+    alignas(32) double ar[MAX_PATHS], ai[MAX_PATHS], sr[MAX_PATHS], si[MAX_PATHS];
+    const std::uint32_t np = paths < MAX_PATHS ? paths : MAX_PATHS;
+    if (tone_len > 0)
+        tone_tables(amp, cyc, np, bre, bim, ar, ai, sr, si);
+    lanes g = noise ? seed_lanes(key) : lanes{};
+    float* o = reinterpret_cast<float*>(out);
+    const v8i lo_idx = { 0, 8, 1, 9, 2, 10, 3, 11 };
+    const v8i hi_idx = { 4, 12, 5, 13, 6, 14, 7, 15 };
+    const v8f zero = { 0, 0, 0, 0, 0, 0, 0, 0 };
+    // This block's tones, zero past tone_len.
+    alignas(32) float tr[BLOCK], ti[BLOCK];
+    bool tr_zero = false;
+    for (std::uint32_t base = 0; base < len; base += BLOCK) {
+        if (base < tone_len) {
+            alignas(32) float cf[MAX_PATHS], sf[MAX_PATHS];
+            for (std::uint32_t p = 0; p < np; ++p) {
+                cf[p] = static_cast<float>(ar[p]);
+                sf[p] = static_cast<float>(ai[p]);
+            }
+            for (std::uint32_t p0 = 0; p0 < np; p0 += 4) {
+                v4d vr, vi, vsr, vsi;
+                std::memcpy(&vr, ar + p0, sizeof(vr));
+                std::memcpy(&vi, ai + p0, sizeof(vi));
+                std::memcpy(&vsr, sr + p0, sizeof(vsr));
+                std::memcpy(&vsi, si + p0, sizeof(vsi));
+                const v4d t = vr * vsr - vi * vsi;
+                vi = vr * vsi + vi * vsr;
+                std::memcpy(ar + p0, &t, sizeof(t));
+                std::memcpy(ai + p0, &vi, sizeof(vi));
+            }
+            // All paths summed per sample in path order (as add_tones), four vectors
+            // of eight samples at a time so the accumulators stay in registers.
+            for (std::uint32_t h = 0; h < BLOCK; h += 32) {
+                // Named accumulators, not an array: kept in registers.
+                v8f r0 = zero, r1 = zero, r2 = zero, r3 = zero;
+                v8f i0 = zero, i1 = zero, i2 = zero, i3 = zero;
+                for (std::uint32_t p = 0; p < np; ++p) {
+                    const float cr = cf[p], ci = sf[p];
+                    auto mac = [&](std::uint32_t j, v8f& accr, v8f& acci) {
+                        v8f br, bi;
+                        std::memcpy(&br, &bre[p][h + 8 * j], sizeof(br));
+                        std::memcpy(&bi, &bim[p][h + 8 * j], sizeof(bi));
+                        accr += cr * br - ci * bi;
+                        acci += cr * bi + ci * br;
+                    };
+                    mac(0, r0, i0);
+                    mac(1, r1, i1);
+                    mac(2, r2, i2);
+                    mac(3, r3, i3);
+                }
+                std::memcpy(tr + h, &r0, sizeof(v8f));
+                std::memcpy(tr + h + 8, &r1, sizeof(v8f));
+                std::memcpy(tr + h + 16, &r2, sizeof(v8f));
+                std::memcpy(tr + h + 24, &r3, sizeof(v8f));
+                std::memcpy(ti + h, &i0, sizeof(v8f));
+                std::memcpy(ti + h + 8, &i1, sizeof(v8f));
+                std::memcpy(ti + h + 16, &i2, sizeof(v8f));
+                std::memcpy(ti + h + 24, &i3, sizeof(v8f));
+            }
+            for (std::uint32_t k = tone_len - base; k < BLOCK; ++k)
+                tr[k] = ti[k] = 0.0f;
+            tr_zero = false;
+        } else if (!tr_zero) {
+            std::memset(tr, 0, sizeof(tr));
+            std::memset(ti, 0, sizeof(ti));
+            tr_zero = true;
+        }
+        const std::uint32_t nblk = len - base < BLOCK ? len - base : BLOCK;
+        for (std::uint32_t c = 0; c < nblk; c += 8) {
+            v8f re, im;
+            std::memcpy(&re, tr + c, sizeof(re));
+            std::memcpy(&im, ti + c, sizeof(im));
+            if (noise) {
+                // As add_gaussian_noise on a buffer holding the tones (or zeros).
+                v8f nr, ni;
+                g.normals(sigma, nr, ni);
+                re += nr;
+                im += ni;
+            }
+            float* q = o + 2 * (base + c);
+            if (nblk - c >= 8) {
+                const v8f a = __builtin_shuffle(re, im, lo_idx);
+                const v8f b = __builtin_shuffle(re, im, hi_idx);
+                std::memcpy(q, &a, sizeof(a));
+                std::memcpy(q + 8, &b, sizeof(b));
+            } else {
+                for (std::uint32_t k = 0; k < nblk - c; ++k) {
+                    q[2 * k] = re[k];
+                    q[2 * k + 1] = im[k];
+                }
             }
         }
     }

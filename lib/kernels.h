@@ -61,6 +61,23 @@ void add_gaussian_noise(std::complex<float>* out,
                         float sigma,
                         std::uint64_t key);
 
+/*!
+ * out[n] = sum_p amp[p] exp(j 2 pi cyc[p] n) (n < tone_len, zero after) plus, when noise,
+ * the noise add_gaussian_noise(out, len, sigma, key) would add; n < len. The same floats
+ * as zeroing out, add_tones over tone_len and add_gaussian_noise over len, in one pass
+ * (the tones of each 64-sample block are summed in registers, then the noise is added
+ * before the block is stored).
+ */
+void tones_and_noise(std::complex<float>* out,
+                     std::uint32_t len,
+                     std::uint32_t tone_len,
+                     const std::complex<double>* amp,
+                     const double* cyc,
+                     std::uint32_t paths,
+                     bool noise,
+                     float sigma,
+                     std::uint64_t key);
+
 } // namespace detail
 } // namespace rfseek
 } // namespace gr

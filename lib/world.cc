@@ -176,7 +176,6 @@ void world::synthesize(std::complex<float>* out, std::size_t n) const
 {
     if (n == 0)
         return;
-    std::fill(out, out + n, std::complex<float>(0.0f, 0.0f));
     const std::size_t nb = std::min<std::size_t>(n, d_sc.window_len);
     const double ts = 1.0 / d_sc.samp_rate_hz;
 
@@ -196,20 +195,22 @@ void world::synthesize(std::complex<float>* out, std::size_t n) const
         amp[p] = ps[p].amplitude * rot;
         cyc[p] = (ps[p].doppler_hz + f_o) * ts;
     }
-    detail::add_tones(out,
-                      static_cast<std::uint32_t>(nb),
-                      amp.data(),
-                      cyc.data(),
-                      static_cast<std::uint32_t>(amp.size()));
-
-    if (d_sc.add_noise) {
+    const bool noise = d_sc.add_noise;
+    std::uint64_t noise_key = 0;
+    if (noise) {
         std::uint64_t key = d_sc.seed ^ 0x6E6F697365ULL; // per-slot noise stream
         rng g(key, STREAM_NOISE, d_slot);
-        detail::add_gaussian_noise(out,
-                                   static_cast<std::uint32_t>(n),
-                                   static_cast<float>(std::sqrt(0.5 * d_noise_power)),
-                                   g.next());
+        noise_key = g.next();
     }
+    detail::tones_and_noise(out,
+                            static_cast<std::uint32_t>(n),
+                            static_cast<std::uint32_t>(nb),
+                            amp.data(),
+                            cyc.data(),
+                            static_cast<std::uint32_t>(amp.size()),
+                            noise,
+                            static_cast<float>(std::sqrt(0.5 * d_noise_power)),
+                            noise_key);
 }
 
 std::vector<std::complex<float>> world::synthesize(std::size_t n) const

@@ -12,6 +12,7 @@
 #ifndef INCLUDED_RFSEEK_KERNELS_H
 #define INCLUDED_RFSEEK_KERNELS_H
 
+#include <cmath>
 #include <complex>
 #include <cstdint>
 
@@ -60,6 +61,26 @@ void add_gaussian_noise(std::complex<float>* out,
                         std::uint32_t len,
                         float sigma,
                         std::uint64_t key);
+
+/*!
+ * std::fmod(x, y) for finite x and y > 0, bit for bit (fmod is exact), without its slow
+ * loop: n = trunc(|x| / y) is the true quotient or one more (the division rounds
+ * monotonically and integers below 2^52 are exact), |x| - n y is then fmod's result or
+ * that minus y, both representable, so one fma computes it exactly, and a negative
+ * remainder takes y back exactly. Falls back to std::fmod when |x| / y >= 2^52.
+ */
+inline double fmod_exact(double x, double y)
+{
+    const double ax = std::fabs(x);
+    const double q = ax / y;
+    if (!(q < 4503599627370496.0)) // 2^52, or NaN
+        return std::fmod(x, y);
+    const double n = std::trunc(q);
+    double r = std::fma(-n, y, ax);
+    if (r < 0.0)
+        r += y;
+    return std::copysign(r, x);
+}
 
 /*!
  * out[n] = sum_p amp[p] exp(j 2 pi cyc[p] n) (n < tone_len, zero after) plus, when noise,

@@ -31,7 +31,7 @@ constexpr double TWO_PI = 2.0 * M_PI;
 
 double world::wrap(double a)
 {
-    a = std::fmod(a + M_PI, TWO_PI);
+    a = detail::fmod_exact(a + M_PI, TWO_PI);
     if (a <= 0.0)
         a += TWO_PI;
     return a - M_PI;
@@ -126,7 +126,7 @@ void world::fill_paths(std::vector<path_state>& out) const
     const double ch = std::cos(d_heading), sh = std::sin(d_heading);
     out.clear();
     const double d = distance_m();
-    out.push_back({ d_amp * std::polar(1.0 / d, -std::fmod(beta * d, TWO_PI)),
+    out.push_back({ d_amp * std::polar(1.0 / d, -detail::fmod_exact(beta * d, TWO_PI)),
                     fd * (ch * -d_x + sh * -d_y) / d,
                     d });
     for (std::size_t i = 0; i < d_scatterers.size(); ++i) {
@@ -134,10 +134,10 @@ void world::fill_paths(std::vector<path_state>& out) const
         const double dx = s.x_m - d_x, dy = s.y_m - d_y;
         const double ri = std::hypot(dx, dy);
         const double L = d_scatterer_range[i] + ri;
-        out.push_back(
-            { d_amp * s.gamma * std::polar(1.0 / L, -std::fmod(beta * L, TWO_PI)),
-              fd * (ch * dx + sh * dy) / ri,
-              L });
+        out.push_back({ d_amp * s.gamma *
+                            std::polar(1.0 / L, -detail::fmod_exact(beta * L, TWO_PI)),
+                        fd * (ch * dx + sh * dy) / ri,
+                        L });
     }
 }
 

@@ -72,6 +72,8 @@ void add_gaussian_noise(std::complex<float>* out,
 inline double fmod_exact(double x, double y)
 {
     const double ax = std::fabs(x);
+    if (ax < y)
+        return x; // also keeps subnormal x exact where denormals are flushed
     const double q = ax / y;
     if (!(q < 4503599627370496.0)) // 2^52, or NaN
         return std::fmod(x, y);

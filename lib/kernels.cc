@@ -16,6 +16,9 @@ namespace {
 typedef float v8f __attribute__((vector_size(32)));
 typedef int v8i __attribute__((vector_size(32)));
 typedef unsigned int v8u __attribute__((vector_size(32)));
+typedef float v16f __attribute__((vector_size(64)));
+typedef int v16i __attribute__((vector_size(64)));
+typedef unsigned int v16u __attribute__((vector_size(64)));
 
 constexpr std::uint32_t BLOCK = 64;
 constexpr std::uint32_t MAX_PATHS = 256;
@@ -242,23 +245,52 @@ void add_tones(std::complex<float>* out,
 namespace {
 // Natural log for x in (0, 1], vectorised: x = m 2^e with m in [sqrt(1/2), sqrt(2)),
 // ln m = 2 atanh(t), t = (m - 1) / (m + 1), |t| <= 0.172 (error < 1e-9 before rounding).
-__attribute__((always_inline)) inline v8f vlog(v8f x)
+template <typename VF, typename VI>
+__attribute__((always_inline)) inline VF vlog(VF x)
 {
-    v8i bits;
+    VI bits;
     std::memcpy(&bits, &x, sizeof(bits));
-    v8i e = ((bits >> 23) & 0xff) - 127;
-    v8i mb = (bits & 0x007fffff) | 0x3f800000; // m in [1, 2)
-    v8f m;
+    VI e = ((bits >> 23) & 0xff) - 127;
+    VI mb = (bits & 0x007fffff) | 0x3f800000; // m in [1, 2)
+    VF m;
     std::memcpy(&m, &mb, sizeof(m));
-    const v8i big = m > 1.41421356f;
+    const VI big = m > 1.41421356f;
     m = big ? m * 0.5f : m;
     e = big ? e + 1 : e;
-    const v8f t = (m - 1.0f) / (m + 1.0f);
-    const v8f t2 = t * t;
-    const v8f poly =
+    const VF t = (m - 1.0f) / (m + 1.0f);
+    const VF t2 = t * t;
+    const VF poly =
         2.0f * t *
         (1.0f + t2 * (1.0f / 3 + t2 * (1.0f / 5 + t2 * (1.0f / 7 + t2 * (1.0f / 9)))));
-    return __builtin_convertvector(e, v8f) * 0.69314718056f + poly;
+    return __builtin_convertvector(e, VF) * 0.69314718056f + poly;
+}
+
+// Box-Muller on two draws of uniform bits per lane: sigma (g1 + j g2) per lane.
+template <typename VF, typename VI, typename VU>
+__attribute__((always_inline)) inline void
+box_muller(VU r1, VU r2, float sigma, VF& re, VF& im)
+{
+    const float pi4 = 0.78539816340f;
+    // u1 in (0, 1]: 24 bits plus half a step; psi in [-pi/4, pi/4); quadrant from 2
+    // bits.
+    const VF u1 =
+        __builtin_convertvector((VI)(r1 >> 8), VF) * 5.9604645e-08f + 2.9802322e-08f;
+    const VF psi =
+        (__builtin_convertvector((VI)(r2 >> 8), VF) * 5.9604645e-08f - 0.5f) * 2.0f * pi4;
+    const VU q = r2 & 3u;
+    VF rad = -2.0f * vlog<VF, VI>(u1);
+    for (unsigned i = 0; i < sizeof(VF) / sizeof(float); ++i) // sqrtps (-fno-math-errno)
+        rad[i] = sigma * std::sqrt(rad[i]);
+    const VF p2 = psi * psi;
+    const VF s = psi * (1.0f - p2 * (1.0f / 6 - p2 * (1.0f / 120 - p2 * (1.0f / 5040))));
+    const VF c =
+        1.0f - p2 * (0.5f - p2 * (1.0f / 24 - p2 * (1.0f / 720 - p2 * (1.0f / 40320))));
+    // Rotate (c, s) by q quarter turns: a uniform angle on the whole circle.
+    const VI q1 = (VI)(q == 1u), q2 = (VI)(q == 2u), q3 = (VI)(q == 3u);
+    VF cr = q1 ? -s : (q2 ? -c : (q3 ? s : c));
+    VF sr = q1 ? c : (q2 ? -s : (q3 ? -c : s));
+    re = rad * cr;
+    im = rad * sr;
 }
 
 struct lanes {
@@ -279,31 +311,22 @@ struct lanes {
     // Eight complex normals sigma (g1 + j g2): Box-Muller, one draw of two steps.
     __attribute__((always_inline)) void normals(float sigma, v8f& re, v8f& im)
     {
-        const float pi4 = 0.78539816340f;
         const v8u r1 = next(), r2 = next();
-        // u1 in (0, 1]: 24 bits plus half a step; psi in [-pi/4, pi/4); quadrant from 2
-        // bits.
-        const v8f u1 = __builtin_convertvector((v8i)(r1 >> 8), v8f) * 5.9604645e-08f +
-                       2.9802322e-08f;
-        const v8f psi =
-            (__builtin_convertvector((v8i)(r2 >> 8), v8f) * 5.9604645e-08f - 0.5f) *
-            2.0f * pi4;
-        const v8u q = r2 & 3u;
-        v8f rad = -2.0f * vlog(u1);
-        for (int i = 0; i < 8; ++i) // vectorised (sqrtps) with -fno-math-errno
-            rad[i] = sigma * std::sqrt(rad[i]);
-        const v8f p2 = psi * psi;
-        const v8f s =
-            psi * (1.0f - p2 * (1.0f / 6 - p2 * (1.0f / 120 - p2 * (1.0f / 5040))));
-        const v8f c =
-            1.0f -
-            p2 * (0.5f - p2 * (1.0f / 24 - p2 * (1.0f / 720 - p2 * (1.0f / 40320))));
-        // Rotate (c, s) by q quarter turns: a uniform angle on the whole circle.
-        const v8i q1 = (v8i)(q == 1u), q2 = (v8i)(q == 2u), q3 = (v8i)(q == 3u);
-        v8f cr = q1 ? -s : (q2 ? -c : (q3 ? s : c));
-        v8f sr = q1 ? c : (q2 ? -s : (q3 ? -c : s));
-        re = rad * cr;
-        im = rad * sr;
+        box_muller<v8f, v8i, v8u>(r1, r2, sigma, re, im);
+    }
+    // Two consecutive draws of normals() at once, in 16-lane vectors (the same numbers:
+    // the lanes' arithmetic is unchanged).
+    __attribute__((always_inline)) void normals2(float sigma, v16f& re, v16f& im)
+    {
+        const v8u a1 = next(), a2 = next(), b1 = next(), b2 = next();
+        box_muller<v16f, v16i, v16u>(
+            __builtin_shufflevector(
+                a1, b1, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15),
+            __builtin_shufflevector(
+                a2, b2, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15),
+            sigma,
+            re,
+            im);
     }
 };
 
@@ -406,10 +429,62 @@ __attribute__((always_inline)) inline void tone_tables(const std::complex<double
         }
     }
 }
+
+// tr[k], ti[k] (k < BLOCK) = sum over paths, in path order, of (cf + j sf)_p B_p[k]: the
+// per-sample arithmetic of add_tones. GROUP samples at a time in four vectors of VF per
+// part, the accumulators named so they stay in registers.
+template <typename VF, std::uint32_t GROUP>
+__attribute__((always_inline)) inline void sum_tones(const float (*bre)[BLOCK],
+                                                     const float (*bim)[BLOCK],
+                                                     const float* cf,
+                                                     const float* sf,
+                                                     std::uint32_t np,
+                                                     float* tr,
+                                                     float* ti)
+{
+    constexpr std::uint32_t W = sizeof(VF) / sizeof(float);
+    static_assert(GROUP == 4 * W && BLOCK % GROUP == 0, "four vectors per group");
+    for (std::uint32_t h = 0; h < BLOCK; h += GROUP) {
+        const VF zero{};
+        VF r0 = zero, r1 = zero, r2 = zero, r3 = zero;
+        VF i0 = zero, i1 = zero, i2 = zero, i3 = zero;
+        for (std::uint32_t p = 0; p < np; ++p) {
+            const float cr = cf[p], ci = sf[p];
+            auto mac = [&](std::uint32_t j, VF& accr, VF& acci) {
+                VF br, bi;
+                std::memcpy(&br, &bre[p][h + W * j], sizeof(br));
+                std::memcpy(&bi, &bim[p][h + W * j], sizeof(bi));
+                accr += cr * br - ci * bi;
+                acci += cr * bi + ci * br;
+            };
+            mac(0, r0, i0);
+            mac(1, r1, i1);
+            mac(2, r2, i2);
+            mac(3, r3, i3);
+        }
+        std::memcpy(tr + h, &r0, sizeof(VF));
+        std::memcpy(tr + h + W, &r1, sizeof(VF));
+        std::memcpy(tr + h + 2 * W, &r2, sizeof(VF));
+        std::memcpy(tr + h + 3 * W, &r3, sizeof(VF));
+        std::memcpy(ti + h, &i0, sizeof(VF));
+        std::memcpy(ti + h + W, &i1, sizeof(VF));
+        std::memcpy(ti + h + 2 * W, &i2, sizeof(VF));
+        std::memcpy(ti + h + 3 * W, &i3, sizeof(VF));
+    }
+}
+
+// 512-bit vectors pay only with AVX-512 (32 registers); elsewhere 16 ymm accumulators
+// would spill.
+const bool HAVE_AVX512F =
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+    __builtin_cpu_supports("avx512f");
+#else
+    false;
+#endif
 } // namespace
 
 #if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
-__attribute__((target_clones("avx2", "default")))
+__attribute__((target_clones("avx512f", "avx2", "default")))
 #endif
 void tones_and_noise(std::complex<float>* out,
                      std::uint32_t len,
@@ -419,7 +494,8 @@ void tones_and_noise(std::complex<float>* out,
                      std::uint32_t paths,
                      bool noise,
                      float sigma,
-                     std::uint64_t key)
+                     std::uint64_t key,
+                     int width)
 {
     if (len == 0)
         return;
@@ -439,7 +515,8 @@ void tones_and_noise(std::complex<float>* out,
     const v8i hi_idx = { 4, 12, 5, 13, 6, 14, 7, 15 };
     const v8f zero = { 0, 0, 0, 0, 0, 0, 0, 0 };
     // This block's tones, zero past tone_len.
-    alignas(32) float tr[BLOCK], ti[BLOCK];
+    alignas(64) float tr[BLOCK], ti[BLOCK];
+    const bool wide = width == 0 ? HAVE_AVX512F : width == 16;
     bool tr_zero = false;
     for (std::uint32_t base = 0; base < len; base += BLOCK) {
         if (base < tone_len) {
@@ -461,33 +538,10 @@ void tones_and_noise(std::complex<float>* out,
             }
             // All paths summed per sample in path order (as add_tones), four vectors
             // of eight samples at a time so the accumulators stay in registers.
-            for (std::uint32_t h = 0; h < BLOCK; h += 32) {
-                // Named accumulators, not an array: kept in registers.
-                v8f r0 = zero, r1 = zero, r2 = zero, r3 = zero;
-                v8f i0 = zero, i1 = zero, i2 = zero, i3 = zero;
-                for (std::uint32_t p = 0; p < np; ++p) {
-                    const float cr = cf[p], ci = sf[p];
-                    auto mac = [&](std::uint32_t j, v8f& accr, v8f& acci) {
-                        v8f br, bi;
-                        std::memcpy(&br, &bre[p][h + 8 * j], sizeof(br));
-                        std::memcpy(&bi, &bim[p][h + 8 * j], sizeof(bi));
-                        accr += cr * br - ci * bi;
-                        acci += cr * bi + ci * br;
-                    };
-                    mac(0, r0, i0);
-                    mac(1, r1, i1);
-                    mac(2, r2, i2);
-                    mac(3, r3, i3);
-                }
-                std::memcpy(tr + h, &r0, sizeof(v8f));
-                std::memcpy(tr + h + 8, &r1, sizeof(v8f));
-                std::memcpy(tr + h + 16, &r2, sizeof(v8f));
-                std::memcpy(tr + h + 24, &r3, sizeof(v8f));
-                std::memcpy(ti + h, &i0, sizeof(v8f));
-                std::memcpy(ti + h + 8, &i1, sizeof(v8f));
-                std::memcpy(ti + h + 16, &i2, sizeof(v8f));
-                std::memcpy(ti + h + 24, &i3, sizeof(v8f));
-            }
+            if (wide)
+                sum_tones<v16f, BLOCK>(bre, bim, cf, sf, np, tr, ti);
+            else
+                sum_tones<v8f, 32>(bre, bim, cf, sf, np, tr, ti);
             for (std::uint32_t k = tone_len - base; k < BLOCK; ++k)
                 tr[k] = ti[k] = 0.0f;
             tr_zero = false;
@@ -497,17 +551,7 @@ void tones_and_noise(std::complex<float>* out,
             tr_zero = true;
         }
         const std::uint32_t nblk = len - base < BLOCK ? len - base : BLOCK;
-        for (std::uint32_t c = 0; c < nblk; c += 8) {
-            v8f re, im;
-            std::memcpy(&re, tr + c, sizeof(re));
-            std::memcpy(&im, ti + c, sizeof(im));
-            if (noise) {
-                // As add_gaussian_noise on a buffer holding the tones (or zeros).
-                v8f nr, ni;
-                g.normals(sigma, nr, ni);
-                re += nr;
-                im += ni;
-            }
+        auto store = [&](std::uint32_t c, v8f re, v8f im) {
             float* q = o + 2 * (base + c);
             if (nblk - c >= 8) {
                 const v8f a = __builtin_shuffle(re, im, lo_idx);
@@ -520,6 +564,34 @@ void tones_and_noise(std::complex<float>* out,
                     q[2 * k + 1] = im[k];
                 }
             }
+        };
+        // Sixteen samples per step: two draws of the noise generator at once.
+        for (std::uint32_t c = 0; c < nblk; c += 16) {
+            v8f re0, im0, re1, im1;
+            std::memcpy(&re0, tr + c, sizeof(re0));
+            std::memcpy(&im0, ti + c, sizeof(im0));
+            std::memcpy(&re1, tr + c + 8, sizeof(re1));
+            std::memcpy(&im1, ti + c + 8, sizeof(im1));
+            const bool two = nblk - c > 8;
+            if (noise) {
+                // As add_gaussian_noise on a buffer holding the tones (or zeros).
+                if (two) {
+                    v16f nr, ni;
+                    g.normals2(sigma, nr, ni);
+                    re0 += __builtin_shufflevector(nr, nr, 0, 1, 2, 3, 4, 5, 6, 7);
+                    im0 += __builtin_shufflevector(ni, ni, 0, 1, 2, 3, 4, 5, 6, 7);
+                    re1 += __builtin_shufflevector(nr, nr, 8, 9, 10, 11, 12, 13, 14, 15);
+                    im1 += __builtin_shufflevector(ni, ni, 8, 9, 10, 11, 12, 13, 14, 15);
+                } else {
+                    v8f nr, ni;
+                    g.normals(sigma, nr, ni);
+                    re0 += nr;
+                    im0 += ni;
+                }
+            }
+            store(c, re0, im0);
+            if (two)
+                store(c + 8, re1, im1);
         }
     }
 }

@@ -5,8 +5,9 @@
  *
  * kernels: the hot loops of the core (spectral peak search, demodulating dot product,
  * sum of tones, Gaussian noise). Written with GCC vector extensions and compiled for AVX2
- * and for the baseline, picked at run time (target_clones), so a distribution build runs
- * everywhere and still uses AVX2 where it exists.
+ * and for the baseline (the one-pass synthesis also for AVX-512), picked at run time
+ * (target_clones), so a distribution build runs everywhere and still uses AVX2 where it
+ * exists. No fused multiply-adds (-ffp-contract=off): every clone gives the same floats.
  */
 
 #ifndef INCLUDED_RFSEEK_KERNELS_H
@@ -89,7 +90,8 @@ inline double fmod_exact(double x, double y)
  * the noise add_gaussian_noise(out, len, sigma, key) would add; n < len. The same floats
  * as zeroing out, add_tones over tone_len and add_gaussian_noise over len, in one pass
  * (the tones of each 64-sample block are summed in registers, then the noise is added
- * before the block is stored).
+ * before the block is stored). width: floats per vector in the tone sums, 16 or 8 (0: 16
+ * where AVX-512 is available); the same floats either way.
  */
 void tones_and_noise(std::complex<float>* out,
                      std::uint32_t len,
@@ -99,7 +101,8 @@ void tones_and_noise(std::complex<float>* out,
                      std::uint32_t paths,
                      bool noise,
                      float sigma,
-                     std::uint64_t key);
+                     std::uint64_t key,
+                     int width = 0);
 
 } // namespace detail
 } // namespace rfseek

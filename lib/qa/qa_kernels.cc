@@ -108,28 +108,32 @@ TEST(kernels, tones_and_noise_equals_tones_then_noise_bit_for_bit)
                     amp[p] = std::polar(g.uniform(1e-4, 1.0), g.uniform(-M_PI, M_PI));
                     cyc[p] = g.uniform(-0.02, 0.02);
                 }
-                for (bool noise : { false, true }) {
-                    const float sigma = 0.3f;
-                    const std::uint64_t key = g.next();
-                    std::vector<std::complex<float>> ref(len), got(len, { 7.0f, 7.0f });
-                    detail::add_tones(
-                        ref.data(), tone_len, amp.data(), cyc.data(), paths);
-                    if (noise)
-                        detail::add_gaussian_noise(ref.data(), len, sigma, key);
-                    detail::tones_and_noise(got.data(),
-                                            len,
-                                            tone_len,
-                                            amp.data(),
-                                            cyc.data(),
-                                            paths,
-                                            noise,
-                                            sigma,
-                                            key);
-                    for (std::uint32_t k = 0; k < len; ++k) {
-                        ASSERT_EQ(std::memcmp(&got[k], &ref[k], sizeof(got[k])), 0)
-                            << "paths " << paths << " len " << len << " tone_len "
-                            << tone_len << " noise " << noise << " k " << k << ": "
-                            << got[k] << " vs " << ref[k];
+                for (int width : { 8, 16, 0 }) {
+                    for (bool noise : { false, true }) {
+                        const float sigma = 0.3f;
+                        const std::uint64_t key = g.next();
+                        std::vector<std::complex<float>> ref(len),
+                            got(len, { 7.0f, 7.0f });
+                        detail::add_tones(
+                            ref.data(), tone_len, amp.data(), cyc.data(), paths);
+                        if (noise)
+                            detail::add_gaussian_noise(ref.data(), len, sigma, key);
+                        detail::tones_and_noise(got.data(),
+                                                len,
+                                                tone_len,
+                                                amp.data(),
+                                                cyc.data(),
+                                                paths,
+                                                noise,
+                                                sigma,
+                                                key,
+                                                width);
+                        for (std::uint32_t k = 0; k < len; ++k) {
+                            ASSERT_EQ(std::memcmp(&got[k], &ref[k], sizeof(got[k])), 0)
+                                << "paths " << paths << " len " << len << " tone_len "
+                                << tone_len << " noise " << noise << " width " << width
+                                << " k " << k << ": " << got[k] << " vs " << ref[k];
+                        }
                     }
                 }
             }

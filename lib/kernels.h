@@ -86,6 +86,17 @@ inline double fmod_exact(double x, double y)
 }
 
 /*!
+ * std::polar(rho, theta) with one sincos call instead of cos and sin: glibc's sincos
+ * returns the very doubles of its cos and sin (checked on 5e8 arguments, and by a test).
+ */
+inline std::complex<double> polar(double rho, double theta)
+{
+    double s, c;
+    ::sincos(theta, &s, &c);
+    return { rho * c, rho * s };
+}
+
+/*!
  * out[n] = sum_p amp[p] exp(j 2 pi cyc[p] n) (n < tone_len, zero after) plus, when noise,
  * the noise add_gaussian_noise(out, len, sigma, key) would add; n < len. The same floats
  * as zeroing out, add_tones over tone_len and add_gaussian_noise over len, in one pass

@@ -126,7 +126,7 @@ void world::fill_paths(std::vector<path_state>& out) const
     const double ch = std::cos(d_heading), sh = std::sin(d_heading);
     out.clear();
     const double d = distance_m();
-    out.push_back({ d_amp * std::polar(1.0 / d, -detail::fmod_exact(beta * d, TWO_PI)),
+    out.push_back({ d_amp * detail::polar(1.0 / d, -detail::fmod_exact(beta * d, TWO_PI)),
                     fd * (ch * -d_x + sh * -d_y) / d,
                     d });
     for (std::size_t i = 0; i < d_scatterers.size(); ++i) {
@@ -135,7 +135,7 @@ void world::fill_paths(std::vector<path_state>& out) const
         const double ri = std::hypot(dx, dy);
         const double L = d_scatterer_range[i] + ri;
         out.push_back({ d_amp * s.gamma *
-                            std::polar(1.0 / L, -detail::fmod_exact(beta * L, TWO_PI)),
+                            detail::polar(1.0 / L, -detail::fmod_exact(beta * L, TWO_PI)),
                         fd * (ch * dx + sh * dy) / ri,
                         L });
     }

@@ -168,6 +168,20 @@ TEST(kernels, fmod_exact_is_std_fmod_bit_for_bit)
         EXPECT_TRUE(same(x, two_pi)) << x;
 }
 
+TEST(kernels, polar_is_std_polar_bit_for_bit)
+{
+    // The path phases are in (-2 pi, 0]; a wider range for good measure.
+    rng g(26);
+    for (int i = 0; i < 1000000; ++i) {
+        const double rho = g.uniform(1e-6, 1.0);
+        const double theta =
+            i % 2 ? g.uniform(-2.0 * M_PI, 0.0) : g.uniform(-100.0, 100.0);
+        const std::complex<double> a = detail::polar(rho, theta),
+                                   b = std::polar(rho, theta);
+        ASSERT_EQ(std::memcmp(&a, &b, sizeof(a)), 0) << rho << " " << theta;
+    }
+}
+
 TEST(kernels, gaussian_noise_is_gaussian)
 {
     const std::uint32_t n = 1u << 20;

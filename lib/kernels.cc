@@ -34,54 +34,65 @@ std::uint64_t splitmix(std::uint64_t& x)
 } // namespace
 
 #if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
-__attribute__((target_clones("avx2", "default")))
+__attribute__((target_clones("avx512f", "avx2", "default")))
 #endif
 peak peak_search(const std::complex<float>* x, std::uint32_t n)
 {
     const float* f = reinterpret_cast<const float*>(x);
     const std::uint32_t blocks = n / 8;
     // Two independent sets of running maxima and sums (even and odd blocks), so the
-    // compare-and-select chains overlap instead of waiting on each other.
-    v8f best[2] = { { -1, -1, -1, -1, -1, -1, -1, -1 },
-                    { -1, -1, -1, -1, -1, -1, -1, -1 } };
-    v8i best_block[2] = { { 0, 0, 0, 0, 0, 0, 0, 0 }, { 0, 0, 0, 0, 0, 0, 0, 0 } };
-    v8f sum[2] = { { 0, 0, 0, 0, 0, 0, 0, 0 }, { 0, 0, 0, 0, 0, 0, 0, 0 } };
-    // Squares, pair sums within 128-bit lanes, then a blend: lane l holds the power of
-    // complex element LANE_ELEMENT[l] of the block of 8.
-    const v8i swap_pairs = { 1, 0, 3, 2, 5, 4, 7, 6 };
-    const v8i take_odd_from_hi = { 0, 9, 2, 11, 4, 13, 6, 15 };
+    // compare-and-select chains overlap instead of waiting on each other; both sets in
+    // one 16-lane vector (lanes 0-7 even blocks, 8-15 odd), a pair of blocks per step.
+    v16f best16 = { -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1 };
+    v16i block16 = { 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0 };
+    v16f sum16 = { 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0 };
+    // Squares, pair sums within pairs of floats, then a blend: lane l (mod 8) holds the
+    // power of complex element LANE_ELEMENT[l % 8] of its block of 8.
+    const v16i swap_pairs = { 1, 0, 3, 2, 5, 4, 7, 6, 9, 8, 11, 10, 13, 12, 15, 14 };
+    const v16i take_odd_from_hi = { 0,  9,  2,  11, 4,  13, 6,  15,
+                                    16, 25, 18, 27, 20, 29, 22, 31 };
     static const std::uint32_t LANE_ELEMENT[8] = { 0, 4, 1, 5, 2, 6, 3, 7 };
-    auto step = [&](std::uint32_t blk, v8f& bst, v8i& bblk, v8f& sm) {
-        v8f lo, hi;
-        std::memcpy(&lo, f + 16 * blk, sizeof(lo));
-        std::memcpy(&hi, f + 16 * blk + 8, sizeof(hi));
-        lo *= lo;
-        hi *= hi;
-        lo += __builtin_shuffle(lo, swap_pairs);
-        hi += __builtin_shuffle(hi, swap_pairs);
-        const v8f p = __builtin_shuffle(lo, hi, take_odd_from_hi);
-        sm += p;
-        const v8i gt = p > bst;
-        bst = gt ? p : bst;
-        const int bi = static_cast<int>(blk);
-        const v8i bb = { bi, bi, bi, bi, bi, bi, bi, bi };
-        bblk = gt ? bb : bblk;
+    auto step = [&](std::uint32_t blk, v16f a, v16f b) {
+        a *= a;
+        b *= b;
+        a += __builtin_shuffle(a, swap_pairs);
+        b += __builtin_shuffle(b, swap_pairs);
+        const v16f p = __builtin_shuffle(a, b, take_odd_from_hi);
+        sum16 += p;
+        const v16i gt = p > best16;
+        best16 = gt ? p : best16;
+        const int e = static_cast<int>(blk), o = e + 1;
+        const v16i bb = { e, e, e, e, e, e, e, e, o, o, o, o, o, o, o, o };
+        block16 = gt ? bb : block16;
     };
-    v8f best0 = best[0], best1 = best[1], sum0 = sum[0], sum1 = sum[1];
-    v8i bb0 = best_block[0], bb1 = best_block[1];
     std::uint32_t b = 0;
     for (; b + 2 <= blocks; b += 2) {
-        step(b, best0, bb0, sum0);
-        step(b + 1, best1, bb1, sum1);
+        v16f a, c;
+        std::memcpy(&a, f + 16 * b, sizeof(a));
+        std::memcpy(&c, f + 16 * b + 16, sizeof(c));
+        step(b, a, c);
     }
-    if (b < blocks)
-        step(b, best0, bb0, sum0);
-    best[0] = best0;
-    best[1] = best1;
-    sum[0] = sum0;
-    sum[1] = sum1;
-    best_block[0] = bb0;
-    best_block[1] = bb1;
+    if (b < blocks) {
+        // The last (even) block alone: the odd half keeps its state.
+        v16f a = {}, c = {};
+        std::memcpy(&a, f + 16 * b, 16 * sizeof(float));
+        const v16f best_keep = best16, sum_keep = sum16;
+        const v16i block_keep = block16;
+        step(b, a, c);
+        const v16i even = { -1, -1, -1, -1, -1, -1, -1, -1, 0, 0, 0, 0, 0, 0, 0, 0 };
+        best16 = even ? best16 : best_keep;
+        sum16 = even ? sum16 : sum_keep;
+        block16 = even ? block16 : block_keep;
+    }
+    v8f best[2], sum[2];
+    v8i best_block[2];
+    for (int lane = 0; lane < 8; ++lane) {
+        for (int par = 0; par < 2; ++par) {
+            best[par][lane] = best16[8 * par + lane];
+            sum[par][lane] = sum16[8 * par + lane];
+            best_block[par][lane] = block16[8 * par + lane];
+        }
+    }
     peak r{ 0, -1.0f, 0.0 };
     for (int s = 0; s < 2; ++s) {
         for (int lane = 0; lane < 8; ++lane) {

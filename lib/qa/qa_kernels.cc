@@ -20,7 +20,7 @@ using namespace gr::rfseek;
 TEST(peak_search, matches_a_plain_loop)
 {
     rng g(21);
-    for (std::uint32_t n : { 1u, 7u, 8u, 9u, 64u, 1000u, 4096u }) {
+    for (std::uint32_t n : { 1u, 7u, 8u, 9u, 16u, 24u, 64u, 1000u, 4096u, 4104u }) {
         for (int trial = 0; trial < 50; ++trial) {
             std::vector<std::complex<float>> x(n);
             for (auto& v : x)
@@ -38,6 +38,21 @@ TEST(peak_search, matches_a_plain_loop)
             ASSERT_EQ(p.index, best) << "n " << n << " trial " << trial;
             EXPECT_EQ(p.value, std::norm(x[best]));
             EXPECT_NEAR(p.total, total, 1e-5 * total);
+            // The documented summation order, exactly: per parity of the block of 8 and
+            // element (in the order 0, 4, 1, 5, 2, 6, 3, 7), a float sum over the blocks,
+            // then the tail.
+            static const std::uint32_t order[8] = { 0, 4, 1, 5, 2, 6, 3, 7 };
+            double exact = 0.0;
+            for (std::uint32_t par = 0; par < 2; ++par)
+                for (std::uint32_t e : order) {
+                    float acc = 0.0f;
+                    for (std::uint32_t b = par; b < n / 8; b += 2)
+                        acc += std::norm(x[8 * b + e]);
+                    exact += acc;
+                }
+            for (std::uint32_t k = n / 8 * 8; k < n; ++k)
+                exact += std::norm(x[k]);
+            EXPECT_EQ(p.total, exact) << "n " << n;
         }
     }
 }

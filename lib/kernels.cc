@@ -441,6 +441,96 @@ __attribute__((always_inline)) inline void tone_tables(const std::complex<double
     }
 }
 
+typedef double v8d __attribute__((vector_size(64)));
+
+// v[k][i] -> v[i][k] for eight vectors of eight floats (values only move).
+__attribute__((always_inline)) inline void
+transpose8(v8f& r0, v8f& r1, v8f& r2, v8f& r3, v8f& r4, v8f& r5, v8f& r6, v8f& r7)
+{
+    const v8i lo = { 0, 8, 1, 9, 4, 12, 5, 13 }, hi = { 2, 10, 3, 11, 6, 14, 7, 15 };
+    const v8i lo2 = { 0, 1, 8, 9, 4, 5, 12, 13 }, hi2 = { 2, 3, 10, 11, 6, 7, 14, 15 };
+    const v8i lo4 = { 0, 1, 2, 3, 8, 9, 10, 11 }, hi4 = { 4, 5, 6, 7, 12, 13, 14, 15 };
+    const v8f t0 = __builtin_shuffle(r0, r1, lo), t1 = __builtin_shuffle(r0, r1, hi);
+    const v8f t2 = __builtin_shuffle(r2, r3, lo), t3 = __builtin_shuffle(r2, r3, hi);
+    const v8f t4 = __builtin_shuffle(r4, r5, lo), t5 = __builtin_shuffle(r4, r5, hi);
+    const v8f t6 = __builtin_shuffle(r6, r7, lo), t7 = __builtin_shuffle(r6, r7, hi);
+    const v8f u0 = __builtin_shuffle(t0, t2, lo2), u1 = __builtin_shuffle(t0, t2, hi2);
+    const v8f u2 = __builtin_shuffle(t1, t3, lo2), u3 = __builtin_shuffle(t1, t3, hi2);
+    const v8f u4 = __builtin_shuffle(t4, t6, lo2), u5 = __builtin_shuffle(t4, t6, hi2);
+    const v8f u6 = __builtin_shuffle(t5, t7, lo2), u7 = __builtin_shuffle(t5, t7, hi2);
+    r0 = __builtin_shuffle(u0, u4, lo4);
+    r4 = __builtin_shuffle(u0, u4, hi4);
+    r1 = __builtin_shuffle(u1, u5, lo4);
+    r5 = __builtin_shuffle(u1, u5, hi4);
+    r2 = __builtin_shuffle(u2, u6, lo4);
+    r6 = __builtin_shuffle(u2, u6, hi4);
+    r3 = __builtin_shuffle(u3, u7, lo4);
+    r7 = __builtin_shuffle(u3, u7, hi4);
+}
+
+// tone_tables with eight paths per vector (AVX-512): eight steps of the recurrences are
+// kept in registers and transposed, so each path's row is written eight floats at a time.
+__attribute__((always_inline)) inline void
+tone_tables_wide(const std::complex<double>* amp,
+                 const double* cyc,
+                 std::uint32_t np,
+                 float (*bre)[BLOCK],
+                 float (*bim)[BLOCK],
+                 double* ar,
+                 double* ai,
+                 double* sr,
+                 double* si)
+{
+    for (std::uint32_t p0 = 0; p0 < np; p0 += 8) {
+        const std::uint32_t cnt = np - p0 < 8 ? np - p0 : 8;
+        v8d cr = { 1, 1, 1, 1, 1, 1, 1, 1 }, ci = { 0, 0, 0, 0, 0, 0, 0, 0 };
+        for (std::uint32_t i = 0; i < cnt; ++i) {
+            const double w = 2.0 * M_PI * cyc[p0 + i];
+            cr[i] = std::cos(w);
+            ci[i] = std::sin(w);
+        }
+        v8d pr = { 1, 1, 1, 1, 1, 1, 1, 1 }, pi = { 0, 0, 0, 0, 0, 0, 0, 0 };
+        auto step = [&](v8f& fr, v8f& fi) {
+            fr = __builtin_convertvector(pr, v8f);
+            fi = __builtin_convertvector(pi, v8f);
+            const v8d t = pr * cr - pi * ci;
+            pi = pr * ci + pi * cr;
+            pr = t;
+        };
+        for (std::uint32_t b = 0; b < BLOCK; b += 8) {
+            v8f r0, r1, r2, r3, r4, r5, r6, r7, i0, i1, i2, i3, i4, i5, i6, i7;
+            step(r0, i0);
+            step(r1, i1);
+            step(r2, i2);
+            step(r3, i3);
+            step(r4, i4);
+            step(r5, i5);
+            step(r6, i6);
+            step(r7, i7);
+            transpose8(r0, r1, r2, r3, r4, r5, r6, r7);
+            transpose8(i0, i1, i2, i3, i4, i5, i6, i7);
+            const v8f* rows_r[8] = { &r0, &r1, &r2, &r3, &r4, &r5, &r6, &r7 };
+            const v8f* rows_i[8] = { &i0, &i1, &i2, &i3, &i4, &i5, &i6, &i7 };
+            for (std::uint32_t i = 0; i < cnt; ++i) {
+                std::memcpy(&bre[p0 + i][b], rows_r[i], sizeof(v8f));
+                std::memcpy(&bim[p0 + i][b], rows_i[i], sizeof(v8f));
+            }
+        }
+        v8d qr = cr, qi = ci;
+        for (std::uint32_t k = 1; k < BLOCK; k *= 2) {
+            const v8d t = qr * qr - qi * qi;
+            qi = 2.0 * qr * qi;
+            qr = t;
+        }
+        for (std::uint32_t i = 0; i < 8; ++i) { // padding lanes: zero amplitude
+            sr[p0 + i] = qr[i];
+            si[p0 + i] = qi[i];
+            ar[p0 + i] = i < cnt ? amp[p0 + i].real() : 0.0;
+            ai[p0 + i] = i < cnt ? amp[p0 + i].imag() : 0.0;
+        }
+    }
+}
+
 // tr[k], ti[k] (k < BLOCK) = sum over paths, in path order, of (cf + j sf)_p B_p[k]: the
 // per-sample arithmetic of add_tones. GROUP samples at a time in four vectors of VF per
 // part, the accumulators named so they stay in registers.
@@ -518,8 +608,13 @@ void tones_and_noise(std::complex<float>* out,
     alignas(32) float bim[MAX_PATHS][BLOCK];
     alignas(32) double ar[MAX_PATHS], ai[MAX_PATHS], sr[MAX_PATHS], si[MAX_PATHS];
     const std::uint32_t np = paths < MAX_PATHS ? paths : MAX_PATHS;
-    if (tone_len > 0)
-        tone_tables(amp, cyc, np, bre, bim, ar, ai, sr, si);
+    const bool wide = width == 0 ? HAVE_AVX512F : width == 16;
+    if (tone_len > 0) {
+        if (wide)
+            tone_tables_wide(amp, cyc, np, bre, bim, ar, ai, sr, si);
+        else
+            tone_tables(amp, cyc, np, bre, bim, ar, ai, sr, si);
+    }
     lanes g = noise ? seed_lanes(key) : lanes{};
     float* o = reinterpret_cast<float*>(out);
     const v8i lo_idx = { 0, 8, 1, 9, 2, 10, 3, 11 };
@@ -527,7 +622,6 @@ void tones_and_noise(std::complex<float>* out,
     const v8f zero = { 0, 0, 0, 0, 0, 0, 0, 0 };
     // This block's tones, zero past tone_len.
     alignas(64) float tr[BLOCK], ti[BLOCK];
-    const bool wide = width == 0 ? HAVE_AVX512F : width == 16;
     bool tr_zero = false;
     for (std::uint32_t base = 0; base < len; base += BLOCK) {
         if (base < tone_len) {

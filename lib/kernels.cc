@@ -119,7 +119,7 @@ peak peak_search(const std::complex<float>* x, std::uint32_t n)
 }
 
 #if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
-__attribute__((target_clones("avx2", "default")))
+__attribute__((target_clones("avx512f", "avx2", "default")))
 #endif
 std::complex<double>
 demod_dot(const std::complex<float>* x,
@@ -129,29 +129,33 @@ demod_dot(const std::complex<float>* x,
           const float* bi)
 {
     const float* f = reinterpret_cast<const float*>(x);
-    const v8i even = { 0, 2, 4, 6, 8, 10, 12, 14 };
-    const v8i odd = { 1, 3, 5, 7, 9, 11, 13, 15 };
+    // Vector j of 8 complex: lanes 0-7 from the first operand; j + 1: lanes 8-15.
+    const v16i even16 = { 0, 2, 4, 6, 8, 10, 12, 14, 16, 18, 20, 22, 24, 26, 28, 30 };
+    const v16i odd16 = { 1, 3, 5, 7, 9, 11, 13, 15, 17, 19, 21, 23, 25, 27, 29, 31 };
     double tr = 0.0, ti = 0.0;
     const std::uint32_t full = n / 64;
     for (std::uint32_t blk = 0; blk < full; ++blk) {
         const float ar = a[2 * blk], ai = a[2 * blk + 1];
-        // Two accumulator pairs (even and odd vectors) so the adds overlap.
-        v8f sr0 = { 0, 0, 0, 0, 0, 0, 0, 0 }, si0 = sr0, sr1 = sr0, si1 = sr0;
+        // Two accumulator pairs (even and odd vectors of 8) so the adds overlap, held
+        // together in 16-lane vectors: lanes 0-7 the even vector, 8-15 the odd one.
+        v16f s16r = {}, s16i = {};
         for (int j = 0; j < 8; j += 2) {
-            for (int h = 0; h < 2; ++h) {
-                v8f lo, hi, vbr, vbi;
-                std::memcpy(&lo, f + 128 * blk + 16 * (j + h), sizeof(lo));
-                std::memcpy(&hi, f + 128 * blk + 16 * (j + h) + 8, sizeof(hi));
-                std::memcpy(&vbr, br + 8 * (j + h), sizeof(vbr));
-                std::memcpy(&vbi, bi + 8 * (j + h), sizeof(vbi));
-                const v8f xr = __builtin_shuffle(lo, hi, even);
-                const v8f xi = __builtin_shuffle(lo, hi, odd);
-                const v8f pr = ar * vbr - ai * vbi;
-                const v8f pi = ar * vbi + ai * vbr;
-                (h ? sr1 : sr0) += xr * pr - xi * pi;
-                (h ? si1 : si0) += xr * pi + xi * pr;
-            }
+            v16f a, b, vbr, vbi;
+            std::memcpy(&a, f + 128 * blk + 16 * j, sizeof(a));
+            std::memcpy(&b, f + 128 * blk + 16 * j + 16, sizeof(b));
+            std::memcpy(&vbr, br + 8 * j, sizeof(vbr));
+            std::memcpy(&vbi, bi + 8 * j, sizeof(vbi));
+            const v16f xr = __builtin_shuffle(a, b, even16);
+            const v16f xi = __builtin_shuffle(a, b, odd16);
+            const v16f pr = ar * vbr - ai * vbi;
+            const v16f pi = ar * vbi + ai * vbr;
+            s16r += xr * pr - xi * pi;
+            s16i += xr * pi + xi * pr;
         }
+        const v8f sr0 = __builtin_shufflevector(s16r, s16r, 0, 1, 2, 3, 4, 5, 6, 7);
+        const v8f sr1 = __builtin_shufflevector(s16r, s16r, 8, 9, 10, 11, 12, 13, 14, 15);
+        const v8f si0 = __builtin_shufflevector(s16i, s16i, 0, 1, 2, 3, 4, 5, 6, 7);
+        const v8f si1 = __builtin_shufflevector(s16i, s16i, 8, 9, 10, 11, 12, 13, 14, 15);
         const v8f sr = sr0 + sr1, si = si0 + si1;
         for (int lane = 0; lane < 8; ++lane) {
             tr += sr[lane];

@@ -79,6 +79,35 @@ TEST(peak_search, demod_dot_matches_direct_sum)
             ref += std::complex<double>(x[k]) * std::polar(1.0, -w * k);
         const auto got = detail::demod_dot(x.data(), n, a.data(), br.data(), bi.data());
         EXPECT_NEAR(std::abs(got - ref), 0.0, 1e-4 * std::sqrt(double(n))) << "n " << n;
+        // The documented order, exactly: per block of 64, float sums per lane over the
+        // even and the odd vectors of 8, their sum, lanes added in double; then the tail.
+        double er = 0.0, ei = 0.0;
+        for (std::uint32_t blk = 0; blk < n / 64; ++blk) {
+            const float ar = a[2 * blk], ai = a[2 * blk + 1];
+            for (int lane = 0; lane < 8; ++lane) {
+                float sr[2] = { 0.0f, 0.0f }, si[2] = { 0.0f, 0.0f };
+                for (int j = 0; j < 8; ++j) {
+                    const int b = 8 * j + lane;
+                    const float pr = ar * br[b] - ai * bi[b];
+                    const float pi = ar * bi[b] + ai * br[b];
+                    const std::complex<float> v = x[64 * blk + b];
+                    sr[j % 2] += v.real() * pr - v.imag() * pi;
+                    si[j % 2] += v.real() * pi + v.imag() * pr;
+                }
+                er += sr[0] + sr[1];
+                ei += si[0] + si[1];
+            }
+        }
+        const std::uint32_t full = n / 64;
+        for (std::uint32_t k = full * 64; k < n; ++k) {
+            const std::uint32_t b = k - full * 64;
+            const float pr = a[2 * full] * br[b] - a[2 * full + 1] * bi[b];
+            const float pi = a[2 * full] * bi[b] + a[2 * full + 1] * br[b];
+            er += x[k].real() * pr - x[k].imag() * pi;
+            ei += x[k].real() * pi + x[k].imag() * pr;
+        }
+        EXPECT_EQ(got.real(), er) << "n " << n;
+        EXPECT_EQ(got.imag(), ei) << "n " << n;
     }
 }
 

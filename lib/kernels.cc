@@ -84,15 +84,13 @@ peak peak_search(const std::complex<float>* x, std::uint32_t n)
         sum16 = even ? sum16 : sum_keep;
         block16 = even ? block16 : block_keep;
     }
-    v8f best[2], sum[2];
-    v8i best_block[2];
-    for (int lane = 0; lane < 8; ++lane) {
-        for (int par = 0; par < 2; ++par) {
-            best[par][lane] = best16[8 * par + lane];
-            sum[par][lane] = sum16[8 * par + lane];
-            best_block[par][lane] = block16[8 * par + lane];
-        }
-    }
+    // Out through memory in one go (indexing the vectors would keep them in memory
+    // during the loop).
+    float best[2][8], sum[2][8];
+    int best_block[2][8];
+    std::memcpy(best, &best16, sizeof(best));
+    std::memcpy(sum, &sum16, sizeof(sum));
+    std::memcpy(best_block, &block16, sizeof(best_block));
     peak r{ 0, -1.0f, 0.0 };
     for (int s = 0; s < 2; ++s) {
         for (int lane = 0; lane < 8; ++lane) {

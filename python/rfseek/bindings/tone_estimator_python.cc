@@ -4,7 +4,7 @@
  */
 
 /* BINDTOOL_HEADER_FILE(tone_estimator.h) */
-/* BINDTOOL_HEADER_FILE_HASH(bd1d0b2ec596df6a63573ea90577d250) */
+/* BINDTOOL_HEADER_FILE_HASH(e2630ceae790f1ba23b84a1e70bb6812) */
 
 #include <gr-rfseek/tone_estimator.h>
 #include <pybind11/complex.h>

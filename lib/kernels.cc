@@ -658,47 +658,44 @@ void tones_and_noise(std::complex<float>* out,
             tr_zero = true;
         }
         const std::uint32_t nblk = len - base < BLOCK ? len - base : BLOCK;
-        auto store = [&](std::uint32_t c, v8f re, v8f im) {
-            float* q = o + 2 * (base + c);
-            if (nblk - c >= 8) {
-                const v8f a = __builtin_shuffle(re, im, lo_idx);
-                const v8f b = __builtin_shuffle(re, im, hi_idx);
-                std::memcpy(q, &a, sizeof(a));
-                std::memcpy(q + 8, &b, sizeof(b));
-            } else {
-                for (std::uint32_t k = 0; k < nblk - c; ++k) {
-                    q[2 * k] = re[k];
-                    q[2 * k + 1] = im[k];
-                }
-            }
+        // Sixteen samples per step: two draws of the noise generator at once, loaded as
+        // the tone sums were stored (whole vectors, so the loads are forwarded).
+        const v16i lo16 = { 0, 16, 1, 17, 2, 18, 3, 19, 4, 20, 5, 21, 6, 22, 7, 23 };
+        const v16i hi16 = {
+            8, 24, 9, 25, 10, 26, 11, 27, 12, 28, 13, 29, 14, 30, 15, 31
         };
-        // Sixteen samples per step: two draws of the noise generator at once.
         for (std::uint32_t c = 0; c < nblk; c += 16) {
-            v8f re0, im0, re1, im1;
-            std::memcpy(&re0, tr + c, sizeof(re0));
-            std::memcpy(&im0, ti + c, sizeof(im0));
-            std::memcpy(&re1, tr + c + 8, sizeof(re1));
-            std::memcpy(&im1, ti + c + 8, sizeof(im1));
-            const bool two = nblk - c > 8;
+            v16f re, im;
+            std::memcpy(&re, tr + c, sizeof(re));
+            std::memcpy(&im, ti + c, sizeof(im));
             if (noise) {
                 // As add_gaussian_noise on a buffer holding the tones (or zeros).
-                if (two) {
-                    v16f nr, ni;
+                v16f nr, ni;
+                if (nblk - c > 8) {
                     g.normals2(sigma, nr, ni);
-                    re0 += __builtin_shufflevector(nr, nr, 0, 1, 2, 3, 4, 5, 6, 7);
-                    im0 += __builtin_shufflevector(ni, ni, 0, 1, 2, 3, 4, 5, 6, 7);
-                    re1 += __builtin_shufflevector(nr, nr, 8, 9, 10, 11, 12, 13, 14, 15);
-                    im1 += __builtin_shufflevector(ni, ni, 8, 9, 10, 11, 12, 13, 14, 15);
                 } else {
-                    v8f nr, ni;
-                    g.normals(sigma, nr, ni);
-                    re0 += nr;
-                    im0 += ni;
+                    v8f r8, i8;
+                    g.normals(sigma, r8, i8);
+                    nr = __builtin_shufflevector(
+                        r8, r8, 0, 1, 2, 3, 4, 5, 6, 7, 0, 1, 2, 3, 4, 5, 6, 7);
+                    ni = __builtin_shufflevector(
+                        i8, i8, 0, 1, 2, 3, 4, 5, 6, 7, 0, 1, 2, 3, 4, 5, 6, 7);
                 }
+                re += nr;
+                im += ni;
             }
-            store(c, re0, im0);
-            if (two)
-                store(c + 8, re1, im1);
+            const v16f a = __builtin_shuffle(re, im, lo16);
+            const v16f b = __builtin_shuffle(re, im, hi16);
+            float* q = o + 2 * (base + c);
+            if (nblk - c >= 16) {
+                std::memcpy(q, &a, sizeof(a));
+                std::memcpy(q + 16, &b, sizeof(b));
+            } else {
+                float ab[32];
+                std::memcpy(ab, &a, sizeof(a));
+                std::memcpy(ab + 16, &b, sizeof(b));
+                std::memcpy(q, ab, 2 * (nblk - c) * sizeof(float));
+            }
         }
     }
 }

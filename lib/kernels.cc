@@ -578,12 +578,18 @@ __attribute__((always_inline)) inline void sum_tones(const float (*bre)[BLOCK],
 
 // 512-bit vectors pay only with AVX-512 (32 registers); elsewhere 16 ymm accumulators
 // would spill.
-const bool HAVE_AVX512F =
+// (The clones' resolvers pick the AVX-512 one by the same test; either width gives the
+// same floats.)
+bool have_avx512f()
+{
 #if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
-    __builtin_cpu_supports("avx512f");
+    __builtin_cpu_init(); // may run before libgcc's own initialisation
+    return __builtin_cpu_supports("avx512f");
 #else
-    false;
+    return false;
 #endif
+}
+const bool HAVE_AVX512F = have_avx512f();
 } // namespace
 
 #if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)

@@ -244,8 +244,9 @@ TEST(tone_estimator, input_buffer_in_place_gives_the_same_estimate)
                 EXPECT_EQ(a.freq_hz, b.freq_hz) << window << "/" << interp;
                 EXPECT_EQ(a.snr_db, b.snr_db) << window << "/" << interp;
                 EXPECT_EQ(a.power_db, b.power_db) << window << "/" << interp;
-                if (std::string(window) == "rectangular") // untouched: no window
+                if (std::string(window) == "rectangular") { // untouched: no window
                     EXPECT_TRUE(std::equal(x.begin(), x.end(), est.input_buffer()));
+                }
             }
         }
     }

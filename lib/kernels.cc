@@ -16,6 +16,9 @@ namespace {
 typedef float v8f __attribute__((vector_size(32)));
 typedef int v8i __attribute__((vector_size(32)));
 typedef unsigned int v8u __attribute__((vector_size(32)));
+typedef float v16f __attribute__((vector_size(64)));
+typedef int v16i __attribute__((vector_size(64)));
+typedef unsigned int v16u __attribute__((vector_size(64)));
 
 constexpr std::uint32_t BLOCK = 64;
 constexpr std::uint32_t MAX_PATHS = 256;
@@ -31,54 +34,63 @@ std::uint64_t splitmix(std::uint64_t& x)
 } // namespace
 
 #if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
-__attribute__((target_clones("avx2", "default")))
+__attribute__((target_clones("avx512f", "avx2", "default")))
 #endif
 peak peak_search(const std::complex<float>* x, std::uint32_t n)
 {
     const float* f = reinterpret_cast<const float*>(x);
     const std::uint32_t blocks = n / 8;
     // Two independent sets of running maxima and sums (even and odd blocks), so the
-    // compare-and-select chains overlap instead of waiting on each other.
-    v8f best[2] = { { -1, -1, -1, -1, -1, -1, -1, -1 },
-                    { -1, -1, -1, -1, -1, -1, -1, -1 } };
-    v8i best_block[2] = { { 0, 0, 0, 0, 0, 0, 0, 0 }, { 0, 0, 0, 0, 0, 0, 0, 0 } };
-    v8f sum[2] = { { 0, 0, 0, 0, 0, 0, 0, 0 }, { 0, 0, 0, 0, 0, 0, 0, 0 } };
-    // Squares, pair sums within 128-bit lanes, then a blend: lane l holds the power of
-    // complex element LANE_ELEMENT[l] of the block of 8.
-    const v8i swap_pairs = { 1, 0, 3, 2, 5, 4, 7, 6 };
-    const v8i take_odd_from_hi = { 0, 9, 2, 11, 4, 13, 6, 15 };
+    // compare-and-select chains overlap instead of waiting on each other; both sets in
+    // one 16-lane vector (lanes 0-7 even blocks, 8-15 odd), a pair of blocks per step.
+    v16f best16 = { -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1 };
+    v16i block16 = { 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0 };
+    v16f sum16 = { 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0 };
+    // Squares, pair sums within pairs of floats, then a blend: lane l (mod 8) holds the
+    // power of complex element LANE_ELEMENT[l % 8] of its block of 8.
+    const v16i swap_pairs = { 1, 0, 3, 2, 5, 4, 7, 6, 9, 8, 11, 10, 13, 12, 15, 14 };
+    const v16i take_odd_from_hi = { 0,  9,  2,  11, 4,  13, 6,  15,
+                                    16, 25, 18, 27, 20, 29, 22, 31 };
     static const std::uint32_t LANE_ELEMENT[8] = { 0, 4, 1, 5, 2, 6, 3, 7 };
-    auto step = [&](std::uint32_t blk, v8f& bst, v8i& bblk, v8f& sm) {
-        v8f lo, hi;
-        std::memcpy(&lo, f + 16 * blk, sizeof(lo));
-        std::memcpy(&hi, f + 16 * blk + 8, sizeof(hi));
-        lo *= lo;
-        hi *= hi;
-        lo += __builtin_shuffle(lo, swap_pairs);
-        hi += __builtin_shuffle(hi, swap_pairs);
-        const v8f p = __builtin_shuffle(lo, hi, take_odd_from_hi);
-        sm += p;
-        const v8i gt = p > bst;
-        bst = gt ? p : bst;
-        const int bi = static_cast<int>(blk);
-        const v8i bb = { bi, bi, bi, bi, bi, bi, bi, bi };
-        bblk = gt ? bb : bblk;
+    auto step = [&](std::uint32_t blk, v16f a, v16f b) {
+        a *= a;
+        b *= b;
+        a += __builtin_shuffle(a, swap_pairs);
+        b += __builtin_shuffle(b, swap_pairs);
+        const v16f p = __builtin_shuffle(a, b, take_odd_from_hi);
+        sum16 += p;
+        const v16i gt = p > best16;
+        best16 = gt ? p : best16;
+        const int e = static_cast<int>(blk), o = e + 1;
+        const v16i bb = { e, e, e, e, e, e, e, e, o, o, o, o, o, o, o, o };
+        block16 = gt ? bb : block16;
     };
-    v8f best0 = best[0], best1 = best[1], sum0 = sum[0], sum1 = sum[1];
-    v8i bb0 = best_block[0], bb1 = best_block[1];
     std::uint32_t b = 0;
     for (; b + 2 <= blocks; b += 2) {
-        step(b, best0, bb0, sum0);
-        step(b + 1, best1, bb1, sum1);
+        v16f a, c;
+        std::memcpy(&a, f + 16 * b, sizeof(a));
+        std::memcpy(&c, f + 16 * b + 16, sizeof(c));
+        step(b, a, c);
     }
-    if (b < blocks)
-        step(b, best0, bb0, sum0);
-    best[0] = best0;
-    best[1] = best1;
-    sum[0] = sum0;
-    sum[1] = sum1;
-    best_block[0] = bb0;
-    best_block[1] = bb1;
+    if (b < blocks) {
+        // The last (even) block alone: the odd half keeps its state.
+        v16f a = {}, c = {};
+        std::memcpy(&a, f + 16 * b, 16 * sizeof(float));
+        const v16f best_keep = best16, sum_keep = sum16;
+        const v16i block_keep = block16;
+        step(b, a, c);
+        const v16i even = { -1, -1, -1, -1, -1, -1, -1, -1, 0, 0, 0, 0, 0, 0, 0, 0 };
+        best16 = even ? best16 : best_keep;
+        sum16 = even ? sum16 : sum_keep;
+        block16 = even ? block16 : block_keep;
+    }
+    // Out through memory in one go (indexing the vectors would keep them in memory
+    // during the loop).
+    float best[2][8], sum[2][8];
+    int best_block[2][8];
+    std::memcpy(best, &best16, sizeof(best));
+    std::memcpy(sum, &sum16, sizeof(sum));
+    std::memcpy(best_block, &block16, sizeof(best_block));
     peak r{ 0, -1.0f, 0.0 };
     for (int s = 0; s < 2; ++s) {
         for (int lane = 0; lane < 8; ++lane) {
@@ -105,7 +117,7 @@ peak peak_search(const std::complex<float>* x, std::uint32_t n)
 }
 
 #if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
-__attribute__((target_clones("avx2", "default")))
+__attribute__((target_clones("avx512f", "avx2", "default")))
 #endif
 std::complex<double>
 demod_dot(const std::complex<float>* x,
@@ -115,29 +127,33 @@ demod_dot(const std::complex<float>* x,
           const float* bi)
 {
     const float* f = reinterpret_cast<const float*>(x);
-    const v8i even = { 0, 2, 4, 6, 8, 10, 12, 14 };
-    const v8i odd = { 1, 3, 5, 7, 9, 11, 13, 15 };
+    // Vector j of 8 complex: lanes 0-7 from the first operand; j + 1: lanes 8-15.
+    const v16i even16 = { 0, 2, 4, 6, 8, 10, 12, 14, 16, 18, 20, 22, 24, 26, 28, 30 };
+    const v16i odd16 = { 1, 3, 5, 7, 9, 11, 13, 15, 17, 19, 21, 23, 25, 27, 29, 31 };
     double tr = 0.0, ti = 0.0;
     const std::uint32_t full = n / 64;
     for (std::uint32_t blk = 0; blk < full; ++blk) {
         const float ar = a[2 * blk], ai = a[2 * blk + 1];
-        // Two accumulator pairs (even and odd vectors) so the adds overlap.
-        v8f sr0 = { 0, 0, 0, 0, 0, 0, 0, 0 }, si0 = sr0, sr1 = sr0, si1 = sr0;
+        // Two accumulator pairs (even and odd vectors of 8) so the adds overlap, held
+        // together in 16-lane vectors: lanes 0-7 the even vector, 8-15 the odd one.
+        v16f s16r = {}, s16i = {};
         for (int j = 0; j < 8; j += 2) {
-            for (int h = 0; h < 2; ++h) {
-                v8f lo, hi, vbr, vbi;
-                std::memcpy(&lo, f + 128 * blk + 16 * (j + h), sizeof(lo));
-                std::memcpy(&hi, f + 128 * blk + 16 * (j + h) + 8, sizeof(hi));
-                std::memcpy(&vbr, br + 8 * (j + h), sizeof(vbr));
-                std::memcpy(&vbi, bi + 8 * (j + h), sizeof(vbi));
-                const v8f xr = __builtin_shuffle(lo, hi, even);
-                const v8f xi = __builtin_shuffle(lo, hi, odd);
-                const v8f pr = ar * vbr - ai * vbi;
-                const v8f pi = ar * vbi + ai * vbr;
-                (h ? sr1 : sr0) += xr * pr - xi * pi;
-                (h ? si1 : si0) += xr * pi + xi * pr;
-            }
+            v16f a, b, vbr, vbi;
+            std::memcpy(&a, f + 128 * blk + 16 * j, sizeof(a));
+            std::memcpy(&b, f + 128 * blk + 16 * j + 16, sizeof(b));
+            std::memcpy(&vbr, br + 8 * j, sizeof(vbr));
+            std::memcpy(&vbi, bi + 8 * j, sizeof(vbi));
+            const v16f xr = __builtin_shuffle(a, b, even16);
+            const v16f xi = __builtin_shuffle(a, b, odd16);
+            const v16f pr = ar * vbr - ai * vbi;
+            const v16f pi = ar * vbi + ai * vbr;
+            s16r += xr * pr - xi * pi;
+            s16i += xr * pi + xi * pr;
         }
+        const v8f sr0 = __builtin_shufflevector(s16r, s16r, 0, 1, 2, 3, 4, 5, 6, 7);
+        const v8f sr1 = __builtin_shufflevector(s16r, s16r, 8, 9, 10, 11, 12, 13, 14, 15);
+        const v8f si0 = __builtin_shufflevector(s16i, s16i, 0, 1, 2, 3, 4, 5, 6, 7);
+        const v8f si1 = __builtin_shufflevector(s16i, s16i, 8, 9, 10, 11, 12, 13, 14, 15);
         const v8f sr = sr0 + sr1, si = si0 + si1;
         for (int lane = 0; lane < 8; ++lane) {
             tr += sr[lane];
@@ -242,23 +258,52 @@ void add_tones(std::complex<float>* out,
 namespace {
 // Natural log for x in (0, 1], vectorised: x = m 2^e with m in [sqrt(1/2), sqrt(2)),
 // ln m = 2 atanh(t), t = (m - 1) / (m + 1), |t| <= 0.172 (error < 1e-9 before rounding).
-__attribute__((always_inline)) inline v8f vlog(v8f x)
+template <typename VF, typename VI>
+__attribute__((always_inline)) inline VF vlog(VF x)
 {
-    v8i bits;
+    VI bits;
     std::memcpy(&bits, &x, sizeof(bits));
-    v8i e = ((bits >> 23) & 0xff) - 127;
-    v8i mb = (bits & 0x007fffff) | 0x3f800000; // m in [1, 2)
-    v8f m;
+    VI e = ((bits >> 23) & 0xff) - 127;
+    VI mb = (bits & 0x007fffff) | 0x3f800000; // m in [1, 2)
+    VF m;
     std::memcpy(&m, &mb, sizeof(m));
-    const v8i big = m > 1.41421356f;
+    const VI big = m > 1.41421356f;
     m = big ? m * 0.5f : m;
     e = big ? e + 1 : e;
-    const v8f t = (m - 1.0f) / (m + 1.0f);
-    const v8f t2 = t * t;
-    const v8f poly =
+    const VF t = (m - 1.0f) / (m + 1.0f);
+    const VF t2 = t * t;
+    const VF poly =
         2.0f * t *
         (1.0f + t2 * (1.0f / 3 + t2 * (1.0f / 5 + t2 * (1.0f / 7 + t2 * (1.0f / 9)))));
-    return __builtin_convertvector(e, v8f) * 0.69314718056f + poly;
+    return __builtin_convertvector(e, VF) * 0.69314718056f + poly;
+}
+
+// Box-Muller on two draws of uniform bits per lane: sigma (g1 + j g2) per lane.
+template <typename VF, typename VI, typename VU>
+__attribute__((always_inline)) inline void
+box_muller(VU r1, VU r2, float sigma, VF& re, VF& im)
+{
+    const float pi4 = 0.78539816340f;
+    // u1 in (0, 1]: 24 bits plus half a step; psi in [-pi/4, pi/4); quadrant from 2
+    // bits.
+    const VF u1 =
+        __builtin_convertvector((VI)(r1 >> 8), VF) * 5.9604645e-08f + 2.9802322e-08f;
+    const VF psi =
+        (__builtin_convertvector((VI)(r2 >> 8), VF) * 5.9604645e-08f - 0.5f) * 2.0f * pi4;
+    const VU q = r2 & 3u;
+    VF rad = -2.0f * vlog<VF, VI>(u1);
+    for (unsigned i = 0; i < sizeof(VF) / sizeof(float); ++i) // sqrtps (-fno-math-errno)
+        rad[i] = sigma * std::sqrt(rad[i]);
+    const VF p2 = psi * psi;
+    const VF s = psi * (1.0f - p2 * (1.0f / 6 - p2 * (1.0f / 120 - p2 * (1.0f / 5040))));
+    const VF c =
+        1.0f - p2 * (0.5f - p2 * (1.0f / 24 - p2 * (1.0f / 720 - p2 * (1.0f / 40320))));
+    // Rotate (c, s) by q quarter turns: a uniform angle on the whole circle.
+    const VI q1 = (VI)(q == 1u), q2 = (VI)(q == 2u), q3 = (VI)(q == 3u);
+    VF cr = q1 ? -s : (q2 ? -c : (q3 ? s : c));
+    VF sr = q1 ? c : (q2 ? -s : (q3 ? -c : s));
+    re = rad * cr;
+    im = rad * sr;
 }
 
 struct lanes {
@@ -276,16 +321,29 @@ struct lanes {
         s3 = (s3 << 11) | (s3 >> 21);
         return r;
     }
+    // Eight complex normals sigma (g1 + j g2): Box-Muller, one draw of two steps.
+    __attribute__((always_inline)) void normals(float sigma, v8f& re, v8f& im)
+    {
+        const v8u r1 = next(), r2 = next();
+        box_muller<v8f, v8i, v8u>(r1, r2, sigma, re, im);
+    }
+    // Two consecutive draws of normals() at once, in 16-lane vectors (the same numbers:
+    // the lanes' arithmetic is unchanged).
+    __attribute__((always_inline)) void normals2(float sigma, v16f& re, v16f& im)
+    {
+        const v8u a1 = next(), a2 = next(), b1 = next(), b2 = next();
+        box_muller<v16f, v16i, v16u>(
+            __builtin_shufflevector(
+                a1, b1, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15),
+            __builtin_shufflevector(
+                a2, b2, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15),
+            sigma,
+            re,
+            im);
+    }
 };
-} // namespace
 
-#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
-__attribute__((target_clones("avx2", "default")))
-#endif
-void add_gaussian_noise(std::complex<float>* out,
-                        std::uint32_t len,
-                        float sigma,
-                        std::uint64_t key)
+__attribute__((always_inline)) inline lanes seed_lanes(std::uint64_t key)
 {
     lanes g;
     std::uint64_t x = key;
@@ -296,34 +354,25 @@ void add_gaussian_noise(std::complex<float>* out,
         g.s2[i] = static_cast<unsigned>(b);
         g.s3[i] = static_cast<unsigned>(b >> 32) | 1u; // never all zero
     }
+    return g;
+}
+} // namespace
+
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+__attribute__((target_clones("avx2", "default")))
+#endif
+void add_gaussian_noise(std::complex<float>* out,
+                        std::uint32_t len,
+                        float sigma,
+                        std::uint64_t key)
+{
+    lanes g = seed_lanes(key);
     float* o = reinterpret_cast<float*>(out);
     const v8i lo_idx = { 0, 8, 1, 9, 2, 10, 3, 11 };
     const v8i hi_idx = { 4, 12, 5, 13, 6, 14, 7, 15 };
-    const float pi4 = 0.78539816340f;
     for (std::uint32_t base = 0; base < len; base += 8) {
-        const v8u r1 = g.next(), r2 = g.next();
-        // u1 in (0, 1]: 24 bits plus half a step; psi in [-pi/4, pi/4); quadrant from 2
-        // bits.
-        const v8f u1 = __builtin_convertvector((v8i)(r1 >> 8), v8f) * 5.9604645e-08f +
-                       2.9802322e-08f;
-        const v8f psi =
-            (__builtin_convertvector((v8i)(r2 >> 8), v8f) * 5.9604645e-08f - 0.5f) *
-            2.0f * pi4;
-        const v8u q = r2 & 3u;
-        v8f rad = -2.0f * vlog(u1);
-        for (int i = 0; i < 8; ++i) // vectorised (sqrtps) with -fno-math-errno
-            rad[i] = sigma * std::sqrt(rad[i]);
-        const v8f p2 = psi * psi;
-        const v8f s =
-            psi * (1.0f - p2 * (1.0f / 6 - p2 * (1.0f / 120 - p2 * (1.0f / 5040))));
-        const v8f c =
-            1.0f -
-            p2 * (0.5f - p2 * (1.0f / 24 - p2 * (1.0f / 720 - p2 * (1.0f / 40320))));
-        // Rotate (c, s) by q quarter turns: a uniform angle on the whole circle.
-        const v8i q1 = (v8i)(q == 1u), q2 = (v8i)(q == 2u), q3 = (v8i)(q == 3u);
-        v8f cr = q1 ? -s : (q2 ? -c : (q3 ? s : c));
-        v8f sr = q1 ? c : (q2 ? -s : (q3 ? -c : s));
-        const v8f re = rad * cr, im = rad * sr;
+        v8f re, im;
+        g.normals(sigma, re, im);
         const std::uint32_t n = len - base < 8 ? len - base : 8;
         if (n == 8) {
             v8f a, b;
@@ -337,6 +386,321 @@ void add_gaussian_noise(std::complex<float>* out,
             for (std::uint32_t k = 0; k < n; ++k) {
                 o[2 * (base + k)] += re[k];
                 o[2 * (base + k) + 1] += im[k];
+            }
+        }
+    }
+}
+
+namespace {
+typedef double v4d __attribute__((vector_size(32)));
+typedef float v4f __attribute__((vector_size(16)));
+
+// add_tones' tables for paths [0, np), four paths per vector: the same double
+// recurrences, element by element, as add_tones' scalar loops (so the same floats),
+// with four independent chains in flight instead of one.
+__attribute__((always_inline)) inline void tone_tables(const std::complex<double>* amp,
+                                                       const double* cyc,
+                                                       std::uint32_t np,
+                                                       float (*bre)[BLOCK],
+                                                       float (*bim)[BLOCK],
+                                                       double* ar,
+                                                       double* ai,
+                                                       double* sr,
+                                                       double* si)
+{
+    for (std::uint32_t p0 = 0; p0 < np; p0 += 4) {
+        const std::uint32_t cnt = np - p0 < 4 ? np - p0 : 4;
+        v4d cr = { 1, 1, 1, 1 }, ci = { 0, 0, 0, 0 };
+        for (std::uint32_t i = 0; i < cnt; ++i) {
+            const double w = 2.0 * M_PI * cyc[p0 + i];
+            cr[i] = std::cos(w);
+            ci[i] = std::sin(w);
+        }
+        v4d pr = { 1, 1, 1, 1 }, pi = { 0, 0, 0, 0 };
+        for (std::uint32_t b = 0; b < BLOCK; ++b) {
+            const v4f fr = __builtin_convertvector(pr, v4f);
+            const v4f fi = __builtin_convertvector(pi, v4f);
+            for (std::uint32_t i = 0; i < cnt; ++i) {
+                bre[p0 + i][b] = fr[i];
+                bim[p0 + i][b] = fi[i];
+            }
+            const v4d t = pr * cr - pi * ci;
+            pi = pr * ci + pi * cr;
+            pr = t;
+        }
+        v4d qr = cr, qi = ci;
+        for (std::uint32_t k = 1; k < BLOCK; k *= 2) {
+            const v4d t = qr * qr - qi * qi;
+            qi = 2.0 * qr * qi;
+            qr = t;
+        }
+        for (std::uint32_t i = 0; i < 4; ++i) { // padding lanes: zero amplitude
+            sr[p0 + i] = qr[i];
+            si[p0 + i] = qi[i];
+            ar[p0 + i] = i < cnt ? amp[p0 + i].real() : 0.0;
+            ai[p0 + i] = i < cnt ? amp[p0 + i].imag() : 0.0;
+        }
+    }
+}
+
+typedef double v8d __attribute__((vector_size(64)));
+
+// v[k][i] -> v[i][k] for eight vectors of eight floats (values only move).
+__attribute__((always_inline)) inline void
+transpose8(v8f& r0, v8f& r1, v8f& r2, v8f& r3, v8f& r4, v8f& r5, v8f& r6, v8f& r7)
+{
+    const v8i lo = { 0, 8, 1, 9, 4, 12, 5, 13 }, hi = { 2, 10, 3, 11, 6, 14, 7, 15 };
+    const v8i lo2 = { 0, 1, 8, 9, 4, 5, 12, 13 }, hi2 = { 2, 3, 10, 11, 6, 7, 14, 15 };
+    const v8i lo4 = { 0, 1, 2, 3, 8, 9, 10, 11 }, hi4 = { 4, 5, 6, 7, 12, 13, 14, 15 };
+    const v8f t0 = __builtin_shuffle(r0, r1, lo), t1 = __builtin_shuffle(r0, r1, hi);
+    const v8f t2 = __builtin_shuffle(r2, r3, lo), t3 = __builtin_shuffle(r2, r3, hi);
+    const v8f t4 = __builtin_shuffle(r4, r5, lo), t5 = __builtin_shuffle(r4, r5, hi);
+    const v8f t6 = __builtin_shuffle(r6, r7, lo), t7 = __builtin_shuffle(r6, r7, hi);
+    const v8f u0 = __builtin_shuffle(t0, t2, lo2), u1 = __builtin_shuffle(t0, t2, hi2);
+    const v8f u2 = __builtin_shuffle(t1, t3, lo2), u3 = __builtin_shuffle(t1, t3, hi2);
+    const v8f u4 = __builtin_shuffle(t4, t6, lo2), u5 = __builtin_shuffle(t4, t6, hi2);
+    const v8f u6 = __builtin_shuffle(t5, t7, lo2), u7 = __builtin_shuffle(t5, t7, hi2);
+    r0 = __builtin_shuffle(u0, u4, lo4);
+    r4 = __builtin_shuffle(u0, u4, hi4);
+    r1 = __builtin_shuffle(u1, u5, lo4);
+    r5 = __builtin_shuffle(u1, u5, hi4);
+    r2 = __builtin_shuffle(u2, u6, lo4);
+    r6 = __builtin_shuffle(u2, u6, hi4);
+    r3 = __builtin_shuffle(u3, u7, lo4);
+    r7 = __builtin_shuffle(u3, u7, hi4);
+}
+
+// tone_tables with eight paths per vector (AVX-512): eight steps of the recurrences are
+// kept in registers and transposed, so each path's row is written eight floats at a time.
+__attribute__((always_inline)) inline void
+tone_tables_wide(const std::complex<double>* amp,
+                 const double* cyc,
+                 std::uint32_t np,
+                 float (*bre)[BLOCK],
+                 float (*bim)[BLOCK],
+                 double* ar,
+                 double* ai,
+                 double* sr,
+                 double* si)
+{
+    for (std::uint32_t p0 = 0; p0 < np; p0 += 8) {
+        const std::uint32_t cnt = np - p0 < 8 ? np - p0 : 8;
+        v8d cr = { 1, 1, 1, 1, 1, 1, 1, 1 }, ci = { 0, 0, 0, 0, 0, 0, 0, 0 };
+        for (std::uint32_t i = 0; i < cnt; ++i) {
+            const double w = 2.0 * M_PI * cyc[p0 + i];
+            cr[i] = std::cos(w);
+            ci[i] = std::sin(w);
+        }
+        v8d pr = { 1, 1, 1, 1, 1, 1, 1, 1 }, pi = { 0, 0, 0, 0, 0, 0, 0, 0 };
+        auto step = [&](v8f& fr, v8f& fi) {
+            fr = __builtin_convertvector(pr, v8f);
+            fi = __builtin_convertvector(pi, v8f);
+            const v8d t = pr * cr - pi * ci;
+            pi = pr * ci + pi * cr;
+            pr = t;
+        };
+        for (std::uint32_t b = 0; b < BLOCK; b += 8) {
+            v8f r0, r1, r2, r3, r4, r5, r6, r7, i0, i1, i2, i3, i4, i5, i6, i7;
+            step(r0, i0);
+            step(r1, i1);
+            step(r2, i2);
+            step(r3, i3);
+            step(r4, i4);
+            step(r5, i5);
+            step(r6, i6);
+            step(r7, i7);
+            transpose8(r0, r1, r2, r3, r4, r5, r6, r7);
+            transpose8(i0, i1, i2, i3, i4, i5, i6, i7);
+            const v8f* rows_r[8] = { &r0, &r1, &r2, &r3, &r4, &r5, &r6, &r7 };
+            const v8f* rows_i[8] = { &i0, &i1, &i2, &i3, &i4, &i5, &i6, &i7 };
+            for (std::uint32_t i = 0; i < cnt; ++i) {
+                std::memcpy(&bre[p0 + i][b], rows_r[i], sizeof(v8f));
+                std::memcpy(&bim[p0 + i][b], rows_i[i], sizeof(v8f));
+            }
+        }
+        v8d qr = cr, qi = ci;
+        for (std::uint32_t k = 1; k < BLOCK; k *= 2) {
+            const v8d t = qr * qr - qi * qi;
+            qi = 2.0 * qr * qi;
+            qr = t;
+        }
+        for (std::uint32_t i = 0; i < 8; ++i) { // padding lanes: zero amplitude
+            sr[p0 + i] = qr[i];
+            si[p0 + i] = qi[i];
+            ar[p0 + i] = i < cnt ? amp[p0 + i].real() : 0.0;
+            ai[p0 + i] = i < cnt ? amp[p0 + i].imag() : 0.0;
+        }
+    }
+}
+
+// tr[k], ti[k] (k < BLOCK) = sum over paths, in path order, of (cf + j sf)_p B_p[k]: the
+// per-sample arithmetic of add_tones. GROUP samples at a time in four vectors of VF per
+// part, the accumulators named so they stay in registers.
+template <typename VF, std::uint32_t GROUP>
+__attribute__((always_inline)) inline void sum_tones(const float (*bre)[BLOCK],
+                                                     const float (*bim)[BLOCK],
+                                                     const float* cf,
+                                                     const float* sf,
+                                                     std::uint32_t np,
+                                                     float* tr,
+                                                     float* ti)
+{
+    constexpr std::uint32_t W = sizeof(VF) / sizeof(float);
+    static_assert(GROUP == 4 * W && BLOCK % GROUP == 0, "four vectors per group");
+    for (std::uint32_t h = 0; h < BLOCK; h += GROUP) {
+        const VF zero{};
+        VF r0 = zero, r1 = zero, r2 = zero, r3 = zero;
+        VF i0 = zero, i1 = zero, i2 = zero, i3 = zero;
+        for (std::uint32_t p = 0; p < np; ++p) {
+            const float cr = cf[p], ci = sf[p];
+            auto mac = [&](std::uint32_t j, VF& accr, VF& acci) {
+                VF br, bi;
+                std::memcpy(&br, &bre[p][h + W * j], sizeof(br));
+                std::memcpy(&bi, &bim[p][h + W * j], sizeof(bi));
+                accr += cr * br - ci * bi;
+                acci += cr * bi + ci * br;
+            };
+            mac(0, r0, i0);
+            mac(1, r1, i1);
+            mac(2, r2, i2);
+            mac(3, r3, i3);
+        }
+        std::memcpy(tr + h, &r0, sizeof(VF));
+        std::memcpy(tr + h + W, &r1, sizeof(VF));
+        std::memcpy(tr + h + 2 * W, &r2, sizeof(VF));
+        std::memcpy(tr + h + 3 * W, &r3, sizeof(VF));
+        std::memcpy(ti + h, &i0, sizeof(VF));
+        std::memcpy(ti + h + W, &i1, sizeof(VF));
+        std::memcpy(ti + h + 2 * W, &i2, sizeof(VF));
+        std::memcpy(ti + h + 3 * W, &i3, sizeof(VF));
+    }
+}
+
+// 512-bit vectors pay only with AVX-512 (32 registers); elsewhere 16 ymm accumulators
+// would spill.
+// (The clones' resolvers pick the AVX-512 one by the same test; either width gives the
+// same floats.)
+bool have_avx512f()
+{
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+    __builtin_cpu_init(); // may run before libgcc's own initialisation
+    return __builtin_cpu_supports("avx512f");
+#else
+    return false;
+#endif
+}
+const bool HAVE_AVX512F = have_avx512f();
+} // namespace
+
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+__attribute__((target_clones("avx512f", "avx2", "default")))
+#endif
+void tones_and_noise(std::complex<float>* out,
+                     std::uint32_t len,
+                     std::uint32_t tone_len,
+                     const std::complex<double>* amp,
+                     const double* cyc,
+                     std::uint32_t paths,
+                     bool noise,
+                     float sigma,
+                     std::uint64_t key,
+                     int width)
+{
+    if (len == 0)
+        return;
+    if (tone_len > len)
+        tone_len = len;
+    if (paths == 0)
+        tone_len = 0;
+    alignas(32) float bre[MAX_PATHS][BLOCK];
+    alignas(32) float bim[MAX_PATHS][BLOCK];
+    alignas(32) double ar[MAX_PATHS], ai[MAX_PATHS], sr[MAX_PATHS], si[MAX_PATHS];
+    const std::uint32_t np = paths < MAX_PATHS ? paths : MAX_PATHS;
+    const bool wide = width == 0 ? HAVE_AVX512F : width == 16;
+    if (tone_len > 0) {
+        if (wide)
+            tone_tables_wide(amp, cyc, np, bre, bim, ar, ai, sr, si);
+        else
+            tone_tables(amp, cyc, np, bre, bim, ar, ai, sr, si);
+    }
+    lanes g = noise ? seed_lanes(key) : lanes{};
+    float* o = reinterpret_cast<float*>(out);
+    const v8i lo_idx = { 0, 8, 1, 9, 2, 10, 3, 11 };
+    const v8i hi_idx = { 4, 12, 5, 13, 6, 14, 7, 15 };
+    const v8f zero = { 0, 0, 0, 0, 0, 0, 0, 0 };
+    // This block's tones, zero past tone_len.
+    alignas(64) float tr[BLOCK], ti[BLOCK];
+    bool tr_zero = false;
+    for (std::uint32_t base = 0; base < len; base += BLOCK) {
+        if (base < tone_len) {
+            alignas(32) float cf[MAX_PATHS], sf[MAX_PATHS];
+            for (std::uint32_t p = 0; p < np; ++p) {
+                cf[p] = static_cast<float>(ar[p]);
+                sf[p] = static_cast<float>(ai[p]);
+            }
+            for (std::uint32_t p0 = 0; p0 < np; p0 += 4) {
+                v4d vr, vi, vsr, vsi;
+                std::memcpy(&vr, ar + p0, sizeof(vr));
+                std::memcpy(&vi, ai + p0, sizeof(vi));
+                std::memcpy(&vsr, sr + p0, sizeof(vsr));
+                std::memcpy(&vsi, si + p0, sizeof(vsi));
+                const v4d t = vr * vsr - vi * vsi;
+                vi = vr * vsi + vi * vsr;
+                std::memcpy(ar + p0, &t, sizeof(t));
+                std::memcpy(ai + p0, &vi, sizeof(vi));
+            }
+            // All paths summed per sample in path order (as add_tones), four vectors
+            // of eight samples at a time so the accumulators stay in registers.
+            if (wide)
+                sum_tones<v16f, BLOCK>(bre, bim, cf, sf, np, tr, ti);
+            else
+                sum_tones<v8f, 32>(bre, bim, cf, sf, np, tr, ti);
+            for (std::uint32_t k = tone_len - base; k < BLOCK; ++k)
+                tr[k] = ti[k] = 0.0f;
+            tr_zero = false;
+        } else if (!tr_zero) {
+            std::memset(tr, 0, sizeof(tr));
+            std::memset(ti, 0, sizeof(ti));
+            tr_zero = true;
+        }
+        const std::uint32_t nblk = len - base < BLOCK ? len - base : BLOCK;
+        // Sixteen samples per step: two draws of the noise generator at once, loaded as
+        // the tone sums were stored (whole vectors, so the loads are forwarded).
+        const v16i lo16 = { 0, 16, 1, 17, 2, 18, 3, 19, 4, 20, 5, 21, 6, 22, 7, 23 };
+        const v16i hi16 = {
+            8, 24, 9, 25, 10, 26, 11, 27, 12, 28, 13, 29, 14, 30, 15, 31
+        };
+        for (std::uint32_t c = 0; c < nblk; c += 16) {
+            v16f re, im;
+            std::memcpy(&re, tr + c, sizeof(re));
+            std::memcpy(&im, ti + c, sizeof(im));
+            if (noise) {
+                // As add_gaussian_noise on a buffer holding the tones (or zeros).
+                v16f nr, ni;
+                if (nblk - c > 8) {
+                    g.normals2(sigma, nr, ni);
+                } else {
+                    v8f r8, i8;
+                    g.normals(sigma, r8, i8);
+                    nr = __builtin_shufflevector(
+                        r8, r8, 0, 1, 2, 3, 4, 5, 6, 7, 0, 1, 2, 3, 4, 5, 6, 7);
+                    ni = __builtin_shufflevector(
+                        i8, i8, 0, 1, 2, 3, 4, 5, 6, 7, 0, 1, 2, 3, 4, 5, 6, 7);
+                }
+                re += nr;
+                im += ni;
+            }
+            const v16f a = __builtin_shuffle(re, im, lo16);
+            const v16f b = __builtin_shuffle(re, im, hi16);
+            float* q = o + 2 * (base + c);
+            if (nblk - c >= 16) {
+                std::memcpy(q, &a, sizeof(a));
+                std::memcpy(q + 16, &b, sizeof(b));
+            } else {
+                float ab[32];
+                std::memcpy(ab, &a, sizeof(a));
+                std::memcpy(ab + 16, &b, sizeof(b));
+                std::memcpy(q, ab, 2 * (nblk - c) * sizeof(float));
             }
         }
     }

@@ -59,13 +59,15 @@ run_result simulation::run(bool keep_records) const
     world w(d_sc);
     const auto est = make_estimator(d_sc, d_est);
     auto sk = seeker::make(d_cfg);
-    std::vector<std::complex<float>> buf(d_sc.window_len);
+    // The beacon is synthesised straight into the estimator's FFT input.
+    std::complex<float>* buf = est->input_buffer();
+    const std::size_t n = static_cast<std::size_t>(d_sc.window_len);
     r.scatterers = w.scatterers();
     int prev_stage = 0;
 
     while (!w.finished()) {
-        w.synthesize(buf.data(), buf.size());
-        const tone_estimate e = est->estimate(buf.data());
+        w.synthesize(buf, n);
+        const tone_estimate e = est->estimate(buf);
         measurement m;
         m.slot = w.slot();
         m.time_s = w.time_s();

@@ -102,7 +102,7 @@ struct tone_estimator::impl {
     win_kind wk = win_kind::rectangular;
     interp_kind ik = interp_kind::parabolic;
     volk_ptr<float> win;
-    volk_ptr<std::complex<float>> y, phasor;
+    volk_ptr<std::complex<float>> y, phasor, xcopy;
     std::vector<float> atab, btab_re, btab_im;
     std::vector<volk_ptr<float>> upow; // u^k, k < MOMENTS
     // search band as bins [kmin, kmax] in signed FFT indexing; full band when !banded
@@ -351,6 +351,11 @@ double tone_estimator::crb_std_hz(double snr_linear, int window_len, double samp
     return std::sqrt(6.0 / (TWO_PI * TWO_PI * snr_linear * N * (N * N - 1.0) * ts * ts));
 }
 
+std::complex<float>* tone_estimator::input_buffer()
+{
+    return reinterpret_cast<std::complex<float>*>(d_impl->in);
+}
+
 tone_estimate tone_estimator::estimate(const std::vector<std::complex<float>>& x)
 {
     if (x.size() < static_cast<std::size_t>(d_n))
@@ -370,8 +375,15 @@ tone_estimate tone_estimator::estimate(const std::complex<float>* x)
     auto* out = reinterpret_cast<lv_32fc_t*>(m.out);
     double energy = 0.0; // sum |x|^2, from Parseval when the window is rectangular
     if (m.wk == win_kind::rectangular) {
-        std::memcpy(in, x, sizeof(std::complex<float>) * n);
+        if (x != in)
+            std::memcpy(in, x, sizeof(std::complex<float>) * n);
     } else {
+        if (x == in) { // windowing in place would lose the samples demodulate() needs
+            if (!m.xcopy)
+                m.xcopy = volk_alloc<std::complex<float>>(n);
+            std::memcpy(m.xcopy.get(), x, sizeof(std::complex<float>) * n);
+            x = m.xcopy.get();
+        }
         lv_32fc_t e32;
         volk_32fc_x2_conjugate_dot_prod_32fc(&e32, x, x, n);
         energy = std::real(std::complex<double>(e32));

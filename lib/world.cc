@@ -31,7 +31,7 @@ constexpr double TWO_PI = 2.0 * M_PI;
 
 double world::wrap(double a)
 {
-    a = std::fmod(a + M_PI, TWO_PI);
+    a = detail::fmod_exact(a + M_PI, TWO_PI);
     if (a <= 0.0)
         a += TWO_PI;
     return a - M_PI;
@@ -126,7 +126,7 @@ void world::fill_paths(std::vector<path_state>& out) const
     const double ch = std::cos(d_heading), sh = std::sin(d_heading);
     out.clear();
     const double d = distance_m();
-    out.push_back({ d_amp * std::polar(1.0 / d, -std::fmod(beta * d, TWO_PI)),
+    out.push_back({ d_amp * detail::polar(1.0 / d, -detail::fmod_exact(beta * d, TWO_PI)),
                     fd * (ch * -d_x + sh * -d_y) / d,
                     d });
     for (std::size_t i = 0; i < d_scatterers.size(); ++i) {
@@ -134,10 +134,10 @@ void world::fill_paths(std::vector<path_state>& out) const
         const double dx = s.x_m - d_x, dy = s.y_m - d_y;
         const double ri = std::hypot(dx, dy);
         const double L = d_scatterer_range[i] + ri;
-        out.push_back(
-            { d_amp * s.gamma * std::polar(1.0 / L, -std::fmod(beta * L, TWO_PI)),
-              fd * (ch * dx + sh * dy) / ri,
-              L });
+        out.push_back({ d_amp * s.gamma *
+                            detail::polar(1.0 / L, -detail::fmod_exact(beta * L, TWO_PI)),
+                        fd * (ch * dx + sh * dy) / ri,
+                        L });
     }
 }
 
@@ -176,7 +176,6 @@ void world::synthesize(std::complex<float>* out, std::size_t n) const
 {
     if (n == 0)
         return;
-    std::fill(out, out + n, std::complex<float>(0.0f, 0.0f));
     const std::size_t nb = std::min<std::size_t>(n, d_sc.window_len);
     const double ts = 1.0 / d_sc.samp_rate_hz;
 
@@ -196,20 +195,22 @@ void world::synthesize(std::complex<float>* out, std::size_t n) const
         amp[p] = ps[p].amplitude * rot;
         cyc[p] = (ps[p].doppler_hz + f_o) * ts;
     }
-    detail::add_tones(out,
-                      static_cast<std::uint32_t>(nb),
-                      amp.data(),
-                      cyc.data(),
-                      static_cast<std::uint32_t>(amp.size()));
-
-    if (d_sc.add_noise) {
+    const bool noise = d_sc.add_noise;
+    std::uint64_t noise_key = 0;
+    if (noise) {
         std::uint64_t key = d_sc.seed ^ 0x6E6F697365ULL; // per-slot noise stream
         rng g(key, STREAM_NOISE, d_slot);
-        detail::add_gaussian_noise(out,
-                                   static_cast<std::uint32_t>(n),
-                                   static_cast<float>(std::sqrt(0.5 * d_noise_power)),
-                                   g.next());
+        noise_key = g.next();
     }
+    detail::tones_and_noise(out,
+                            static_cast<std::uint32_t>(n),
+                            static_cast<std::uint32_t>(nb),
+                            amp.data(),
+                            cyc.data(),
+                            static_cast<std::uint32_t>(amp.size()),
+                            noise,
+                            static_cast<float>(std::sqrt(0.5 * d_noise_power)),
+                            noise_key);
 }
 
 std::vector<std::complex<float>> world::synthesize(std::size_t n) const

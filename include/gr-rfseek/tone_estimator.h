@@ -60,6 +60,13 @@ public:
 
     //! Estimate from window_len() samples at x.
     tone_estimate estimate(const std::complex<float>* x);
+
+    /*!
+     * The FFT input: window_len() samples written here and passed to estimate() are
+     * not copied again with the rectangular window (the zero padding after them is never
+     * written); other windows leave the windowed samples there. C++ only.
+     */
+    std::complex<float>* input_buffer();
     tone_estimate estimate(const std::vector<std::complex<float>>& x);
 
     double samp_rate_hz() const { return d_fs; }

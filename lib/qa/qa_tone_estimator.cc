@@ -10,6 +10,7 @@
 #include <gr-rfseek/rng.h>
 #include <gr-rfseek/tone_estimator.h>
 #include <gtest/gtest.h>
+#include <algorithm>
 #include <cmath>
 #include <complex>
 #include <limits>
@@ -251,4 +252,26 @@ TEST(tone_estimator, bad_parameters_name_themselves)
                   tone_estimator(FS, N, NFFT, "hann", "newton", -6e4, 0.0);
               }).find("band"),
               std::string::npos);
+}
+
+TEST(tone_estimator, input_buffer_in_place_gives_the_same_estimate)
+{
+    rng g(31);
+    for (const char* window : { "rectangular", "hann", "blackman_harris" }) {
+        for (const char* interp : { "parabolic", "newton" }) {
+            tone_estimator est(FS, N, NFFT, window, interp);
+            for (int t = 0; t < 20; ++t) {
+                const auto x = tone(g.uniform(-40000.0, 40000.0), 1.0, 3.0, g);
+                const tone_estimate a = est.estimate(x);
+                std::copy(x.begin(), x.end(), est.input_buffer());
+                const tone_estimate b = est.estimate(est.input_buffer());
+                EXPECT_EQ(a.freq_hz, b.freq_hz) << window << "/" << interp;
+                EXPECT_EQ(a.snr_db, b.snr_db) << window << "/" << interp;
+                EXPECT_EQ(a.power_db, b.power_db) << window << "/" << interp;
+                if (std::string(window) == "rectangular") { // untouched: no window
+                    EXPECT_TRUE(std::equal(x.begin(), x.end(), est.input_buffer()));
+                }
+            }
+        }
+    }
 }

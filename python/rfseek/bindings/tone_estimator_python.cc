@@ -4,7 +4,7 @@
  */
 
 /* BINDTOOL_HEADER_FILE(tone_estimator.h) */
-/* BINDTOOL_HEADER_FILE_HASH(a0e9f958a69ac8800663c3a3b554488e) */
+/* BINDTOOL_HEADER_FILE_HASH(df9ac0bcb34d752c0862b42a5802277c) */
 
 #include <gr-rfseek/tone_estimator.h>
 #include <pybind11/complex.h>

@@ -64,7 +64,6 @@ private:
     double time_of(std::uint64_t abs) const;
 
     tone_estimator d_est;
-    const double d_samp_rate;
     const bool d_periodic;
     const bool d_energy;
     burst_detector d_detector;

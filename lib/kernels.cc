@@ -625,9 +625,6 @@ void tones_and_noise(std::complex<float>* out,
     }
     lanes g = noise ? seed_lanes(key) : lanes{};
     float* o = reinterpret_cast<float*>(out);
-    const v8i lo_idx = { 0, 8, 1, 9, 2, 10, 3, 11 };
-    const v8i hi_idx = { 4, 12, 5, 13, 6, 14, 7, 15 };
-    const v8f zero = { 0, 0, 0, 0, 0, 0, 0, 0 };
     // This block's tones, zero past tone_len.
     alignas(64) float tr[BLOCK], ti[BLOCK];
     bool tr_zero = false;

@@ -111,9 +111,10 @@ TEST(burst_detector, starts_increase_by_the_holdoff_even_when_it_is_short)
             for (std::size_t i = before; i < starts.size(); ++i) {
                 EXPECT_LT(starts[i], offset + x.size());
                 EXPECT_GE(starts[i] + 7, offset); // the change point looks back < 8
-                if (i > 0)
+                if (i > 0) {
                     EXPECT_GE(starts[i], starts[i - 1] + holdoff)
                         << "seed " << seed << " holdoff " << holdoff;
+                }
             }
             offset += x.size();
         }

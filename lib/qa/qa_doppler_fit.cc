@@ -167,9 +167,10 @@ TEST(doppler_fit, three_probes_resolve_flying_away)
             << err_deg;
         // The difference alone folds |theta~| > 90 deg onto the front.
         const double folded = invert_probe_difference(fp, fm, delta, A);
-        if (std::abs(err_deg) > 90.0)
+        if (std::abs(err_deg) > 90.0) {
             EXPECT_NEAR(
                 folded, std::copysign(M_PI - std::abs(err_deg * DEG), err_deg), 1e-9)
                 << err_deg;
+        }
     }
 }

@@ -237,8 +237,9 @@ TEST(seeker, eq4_rejects_an_outlier_and_relocks)
     command c;
     for (int i = 0; i < cfg.relock_count; ++i) {
         c = feed(k++, 600.0 + i);
-        if (i + 1 < cfg.relock_count)
+        if (i + 1 < cfg.relock_count) {
             EXPECT_FALSE(c.accepted);
+        }
     }
     EXPECT_TRUE(c.accepted);
     EXPECT_EQ(c.filtered_freq_hz, 600.0 + cfg.relock_count - 1);

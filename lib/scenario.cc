@@ -113,6 +113,13 @@ const std::vector<field>& fields()
         RFSEEK_FIELD(speed_mps, kind::real),
         RFSEEK_FIELD(heading_noise_rad, kind::real),
         RFSEEK_FIELD(turn_rate_rad_per_s, kind::real),
+        RFSEEK_FIELD(altitude_m, kind::real),
+        RFSEEK_FIELD(wind_speed_mps, kind::real),
+        RFSEEK_FIELD(wind_to_rad, kind::optional_real),
+        RFSEEK_FIELD(wind_gust_mps, kind::real),
+        RFSEEK_FIELD(wind_gust_tau_s, kind::real),
+        RFSEEK_FIELD(compass_bias_rad, kind::real),
+        RFSEEK_FIELD(compass_noise_rad, kind::real),
         RFSEEK_FIELD(success_radius_m, kind::real),
         RFSEEK_FIELD(flight_cap_m, kind::optional_real),
         RFSEEK_FIELD(seed, kind::unsigned64),
@@ -196,6 +203,14 @@ void scenario::validate() const
         require_range("cfo_drift_hz_per_s", *cfo_drift_hz_per_s, -1.0e4, 1.0e4);
     require_range("heading_noise_rad", heading_noise_rad, 0.0, M_PI);
     require_nonneg("turn_rate_rad_per_s", turn_rate_rad_per_s);
+    require_range("altitude_m", altitude_m, 0.0, 10000.0);
+    require_range("wind_speed_mps", wind_speed_mps, 0.0, 100.0);
+    if (wind_to_rad)
+        require_range("wind_to_rad", *wind_to_rad, -2.0 * M_PI, 2.0 * M_PI);
+    require_range("wind_gust_mps", wind_gust_mps, 0.0, 50.0);
+    require_range("wind_gust_tau_s", wind_gust_tau_s, 0.01, 3600.0);
+    require_range("compass_bias_rad", compass_bias_rad, -M_PI, M_PI);
+    require_range("compass_noise_rad", compass_noise_rad, 0.0, M_PI);
     require_range("success_radius_m", success_radius_m, 0.0, initial_distance_m);
     if (flight_cap_m)
         require_positive("flight_cap_m", *flight_cap_m);
@@ -323,6 +338,16 @@ const std::vector<preset_def>& preset_table()
             { "snr_db", "-10" },
             { "cfo_drift_hz_per_s", "2" },
             { "heading_noise_rad", "0.08726646259971647" } } },
+        { "realistic",
+          "100 m altitude, 4 m/s wind (1 m/s gusts, 5 s), 3 deg compass bias and 2 deg "
+          "noise on what is flown, 30 deg/s turns",
+          { { "altitude_m", "100" },
+            { "wind_speed_mps", "4" },
+            { "wind_gust_mps", "1" },
+            { "wind_gust_tau_s", "5" },
+            { "compass_bias_rad", "0.05235987755982988" },
+            { "compass_noise_rad", "0.03490658503988659" },
+            { "turn_rate_rad_per_s", "0.5235987755982988" } } },
     };
     return table;
 }

@@ -73,10 +73,49 @@ world::world(const scenario& sc) : d_sc(sc)
             std::hypot(d_scatterers.back().x_m, d_scatterers.back().y_m));
     }
 
+    // Wind and compass from their own streams: the draws above are those of the flat,
+    // windless world whatever the wind.
+    if (d_sc.wind_speed_mps > 0.0 || d_sc.wind_gust_mps > 0.0) {
+        rng w(d_sc.seed, STREAM_WIND, 0);
+        const double to = d_sc.wind_to_rad.value_or(w.uniform(-M_PI, M_PI));
+        d_wind_x = d_sc.wind_speed_mps * std::cos(to);
+        d_wind_y = d_sc.wind_speed_mps * std::sin(to);
+        d_gust_x = d_sc.wind_gust_mps * w.normal(); // stationary start
+        d_gust_y = d_sc.wind_gust_mps * w.normal();
+    }
+    draw_compass_error(0); // the start heading, as the compass reads it
+
     update_amplitude();
     draw_measured_heading();
     d_arrived = distance_m() <= d_sc.success_radius_m;
 }
+
+bool world::flat_and_calm() const
+{
+    return d_sc.altitude_m == 0.0 && d_sc.wind_speed_mps == 0.0 &&
+           d_sc.wind_gust_mps == 0.0;
+}
+
+void world::draw_compass_error(std::uint64_t index)
+{
+    d_compass_err = d_sc.compass_bias_rad;
+    if (d_sc.compass_noise_rad > 0.0) {
+        rng g(d_sc.seed, STREAM_COMPASS, index);
+        d_compass_err += d_sc.compass_noise_rad * g.normal();
+    }
+}
+
+double world::ground_vx_mps() const
+{
+    return d_sc.speed_mps * std::cos(d_heading) + d_wind_x + d_gust_x;
+}
+
+double world::ground_vy_mps() const
+{
+    return d_sc.speed_mps * std::sin(d_heading) + d_wind_y + d_gust_y;
+}
+
+double world::slant_range_m() const { return std::hypot(distance_m(), d_sc.altitude_m); }
 
 void world::update_amplitude()
 {
@@ -93,7 +132,10 @@ double world::mean_power_at(double d) const
 double world::mean_field_power(double d) const
 {
     // E|EF|^2 over the positions at distance d: the cross terms average to zero (random
-    // scatterer phases), the scattered path length is d_i + r_i with r_i ~ d.
+    // scatterer phases), the scattered path length is d_i + r_i with r_i ~ d (slant
+    // ranges at altitude).
+    if (d_sc.altitude_m > 0.0)
+        d = std::hypot(d, d_sc.altitude_m);
     double p = 1.0 / (d * d);
     for (const auto& s : d_scatterers) {
         const double L = std::hypot(s.x_m, s.y_m) + d;
@@ -105,7 +147,10 @@ double world::mean_field_power(double d) const
 void world::draw_measured_heading()
 {
     rng g(d_sc.seed, STREAM_HEADING, d_slot);
-    d_measured_heading = wrap(d_heading + d_sc.heading_noise_rad * g.normal());
+    // The compass reads the flown heading minus its error: it believes it flies the
+    // command. (Without compass error this is d_heading + noise, as before.)
+    const double compass = d_compass_err == 0.0 ? d_heading : d_heading - d_compass_err;
+    d_measured_heading = wrap(compass + d_sc.heading_noise_rad * g.normal());
 }
 
 double world::distance_m() const { return std::hypot(d_x, d_y); }
@@ -114,7 +159,11 @@ double world::bearing_to_emitter_rad() const { return std::atan2(-d_y, -d_x); }
 
 double world::los_doppler_hz() const
 {
-    return d_sc.max_doppler_hz() * std::cos(d_heading - bearing_to_emitter_rad());
+    if (flat_and_calm())
+        return d_sc.max_doppler_hz() * std::cos(d_heading - bearing_to_emitter_rad());
+    // Ground velocity along the unit vector toward the emitter (at ground level).
+    return (ground_vx_mps() * -d_x + ground_vy_mps() * -d_y) / slant_range_m() /
+           d_sc.wavelength_m();
 }
 
 void world::fill_paths(std::vector<path_state>& out) const
@@ -125,6 +174,30 @@ void world::fill_paths(std::vector<path_state>& out) const
     // toward the path's source point: no angle needs computing.
     const double ch = std::cos(d_heading), sh = std::sin(d_heading);
     out.clear();
+    if (!flat_and_calm()) {
+        // 3-D: the UAV at altitude h, emitter and scatterers on the ground; the Doppler
+        // is the ground velocity (air + wind) along the unit vector toward each source.
+        const double h = d_sc.altitude_m;
+        const double inv_lambda = 1.0 / d_sc.wavelength_m();
+        const double vx = ground_vx_mps(), vy = ground_vy_mps();
+        const double d3 = std::sqrt(d_x * d_x + d_y * d_y + h * h);
+        out.push_back(
+            { d_amp * detail::polar(1.0 / d3, -detail::fmod_exact(beta * d3, TWO_PI)),
+              inv_lambda * (vx * -d_x + vy * -d_y) / d3,
+              d3 });
+        for (std::size_t i = 0; i < d_scatterers.size(); ++i) {
+            const auto& s = d_scatterers[i];
+            const double dx = s.x_m - d_x, dy = s.y_m - d_y;
+            const double ri = std::sqrt(dx * dx + dy * dy + h * h);
+            const double L = d_scatterer_range[i] + ri;
+            out.push_back(
+                { d_amp * s.gamma *
+                      detail::polar(1.0 / L, -detail::fmod_exact(beta * L, TWO_PI)),
+                  inv_lambda * (vx * dx + vy * dy) / ri,
+                  L });
+        }
+        return;
+    }
     const double d = distance_m();
     out.push_back({ d_amp * detail::polar(1.0 / d, -detail::fmod_exact(beta * d, TWO_PI)),
                     fd * (ch * -d_x + sh * -d_y) / d,
@@ -230,7 +303,12 @@ void world::advance(double commanded_heading_rad)
 
     const double dt = d_sc.slot_period_s;
     const double v = d_sc.speed_mps;
-    const double target = wrap(commanded_heading_rad);
+    // The vehicle steers by its compass: it flies the command plus the compass error,
+    // and its compass then reads the flown heading minus that same error.
+    draw_compass_error(d_slot + 1);
+    const double target = d_compass_err == 0.0
+                              ? wrap(commanded_heading_rad)
+                              : wrap(commanded_heading_rad + d_compass_err);
     const double rate = d_sc.turn_rate_rad_per_s;
 
     if (rate <= 0.0) {
@@ -255,7 +333,20 @@ void world::advance(double commanded_heading_rad)
         d_x += v * straight * std::cos(d_heading);
         d_y += v * straight * std::sin(d_heading);
     }
-    d_flown += v * dt;
+    // The air moves the vehicle: mean wind plus gusts, then the gusts' next value
+    // (first-order Gauss-Markov, correlation time tau, stationary std wind_gust_mps).
+    if (d_wind_x != 0.0 || d_wind_y != 0.0 || d_sc.wind_gust_mps > 0.0) {
+        d_x += (d_wind_x + d_gust_x) * dt;
+        d_y += (d_wind_y + d_gust_y) * dt;
+        if (d_sc.wind_gust_mps > 0.0) {
+            rng w(d_sc.seed, STREAM_WIND, d_slot + 1);
+            const double a = std::exp(-dt / d_sc.wind_gust_tau_s);
+            const double s = d_sc.wind_gust_mps * std::sqrt(1.0 - a * a);
+            d_gust_x = a * d_gust_x + s * w.normal();
+            d_gust_y = a * d_gust_y + s * w.normal();
+        }
+    }
+    d_flown += v * dt; // through the air: what the battery pays
 
     // CFO: integrate the phase over the slot, then step drift and random walk.
     d_cfo_phase =

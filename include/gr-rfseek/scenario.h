@@ -60,6 +60,15 @@ struct RFSEEK_API scenario {
     double heading_noise_rad =
         0.034906585039886591;         //!< sigma_phi (2 deg), white per slot
     double turn_rate_rad_per_s = 0.0; //!< 0 = instantaneous turns (paper)
+    // Real flight (docs/world.md); the zeros keep the paper's flat, windless world.
+    double altitude_m = 0.0;     //!< UAV height above the emitter (scatterers: ground)
+    double wind_speed_mps = 0.0; //!< mean wind
+    std::optional<double>
+        wind_to_rad;                //!< where the wind blows toward; drawn from the seed
+    double wind_gust_mps = 0.0;     //!< gust std per axis (first-order Gauss-Markov)
+    double wind_gust_tau_s = 5.0;   //!< gust correlation time
+    double compass_bias_rad = 0.0;  //!< flown = commanded + bias + noise (reported: not)
+    double compass_noise_rad = 0.0; //!< white per slot
     // Run
     double success_radius_m = 200.0;    //!< d_v
     std::optional<double> flight_cap_m; //!< default 4 (d - d_v)
@@ -92,7 +101,7 @@ struct RFSEEK_API scenario {
     /*!
      * Named scenario variants, kept here for programs, tests and docs alike:
      * reference, turn30, start1km, start10km, speed20, drift2, drift10, snr-15, snr-22,
-     * hard. A preset is a list of set() overrides on the reference scenario.
+     * hard, realistic. A preset is a list of set() overrides on the reference scenario.
      */
     static std::vector<std::string> presets();
     //! The overrides of a preset, as (key, value) pairs for set().

@@ -53,9 +53,18 @@ public:
     double x_m() const { return d_x; }
     double y_m() const { return d_y; }
     double heading_rad() const { return d_heading; }
-    //! Heading the UAV's sensors report for this slot (true heading + sigma_phi noise).
+    //! Heading the UAV's sensors report for this slot: the true heading minus the
+    //! compass error it flies with, plus sigma_phi noise.
     double measured_heading_rad() const { return d_measured_heading; }
+    //! Horizontal distance to the emitter (what d_v is judged on).
     double distance_m() const;
+    //! Straight-line (3-D) distance to the emitter, altitude included.
+    double slant_range_m() const;
+    //! Velocity over the ground (air velocity + wind), m/s.
+    double ground_vx_mps() const;
+    double ground_vy_mps() const;
+    //! Compass error of the heading flown in this slot (flown - commanded).
+    double compass_error_rad() const { return d_compass_err; }
     double distance_flown_m() const { return d_flown; }
     //! Bearing from the UAV toward the emitter.
     double bearing_to_emitter_rad() const;
@@ -111,7 +120,12 @@ private:
         STREAM_NOISE = 2,
         STREAM_HEADING = 3,
         STREAM_CFO_WALK = 4,
+        STREAM_WIND = 5,
+        STREAM_COMPASS = 6,
     };
+    //! Altitude and wind absent: the paper's flat, windless world, computed as before.
+    bool flat_and_calm() const;
+    void draw_compass_error(std::uint64_t index);
 
     void draw_measured_heading();
     void update_amplitude();
@@ -127,6 +141,9 @@ private:
     double d_flown = 0.0;
     double d_cfo_hz = 0.0, d_cfo_drift = 0.0, d_cfo_phase = 0.0;
     double d_amp = 0.0, d_noise_power = 0.0;
+    double d_wind_x = 0.0, d_wind_y = 0.0; // mean wind
+    double d_gust_x = 0.0, d_gust_y = 0.0; // gusts (Gauss-Markov), this slot
+    double d_compass_err = 0.0;            // flown - commanded, this slot
     bool d_arrived = false, d_capped = false;
 };
 

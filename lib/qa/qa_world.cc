@@ -385,3 +385,140 @@ TEST(world, zero_length_synthesis_is_harmless)
     for (const auto& v : x)
         EXPECT_TRUE(std::isfinite(v.real()) && std::isfinite(v.imag()));
 }
+
+// --- Real flight (issue 10): altitude, wind, compass ---------------------------------
+
+// At altitude h the line-of-sight Doppler is f_d,max times the elevation cosine
+// d / sqrt(d^2 + h^2), measured on the synthesised samples (mean phase increment).
+TEST(world, altitude_scales_the_los_doppler_by_the_elevation_cosine)
+{
+    for (double h : { 0.0, 50.0, 100.0, 300.0 }) {
+        scenario s = los_only();
+        s.altitude_m = h;
+        s.initial_distance_m = 400.0;
+        s.start_angle_rad = 0.0;
+        s.start_heading_rad = M_PI; // straight at the emitter
+        world w(s);
+        const double expect = s.max_doppler_hz() * 400.0 / std::hypot(400.0, h);
+        EXPECT_NEAR(w.los_doppler_hz(), expect, 1e-9) << h;
+        const cvec x = w.synthesize(s.window_len);
+        EXPECT_NEAR(phase_increment_hz(x, x.size(), s.samp_rate_hz), expect, 0.05) << h;
+        EXPECT_NEAR(w.slant_range_m(), std::hypot(400.0, h), 1e-9);
+        EXPECT_NEAR(w.distance_m(), 400.0, 1e-9); // d_v is judged horizontally
+    }
+}
+
+// The Doppler follows the ground velocity: air velocity plus wind. A 4 m/s tailwind on
+// 10 m/s airspeed is 14 m/s over the ground toward the emitter; a crosswind adds its
+// component along the line of sight.
+TEST(world, wind_moves_the_vehicle_and_its_doppler_follows_the_ground_velocity)
+{
+    scenario s = los_only();
+    s.initial_distance_m = 1000.0;
+    s.start_angle_rad = 0.0;
+    s.start_heading_rad = M_PI;
+    s.wind_speed_mps = 4.0;
+    s.wind_to_rad = M_PI; // tailwind
+    world w(s);
+    const double inv_lambda = s.carrier_hz / C;
+    EXPECT_NEAR(w.los_doppler_hz(), 14.0 * inv_lambda, 1e-9);
+    const cvec x = w.synthesize(s.window_len);
+    EXPECT_NEAR(phase_increment_hz(x, x.size(), s.samp_rate_hz), 14.0 * inv_lambda, 0.05);
+    w.advance(M_PI);
+    EXPECT_NEAR(w.x_m(), 1000.0 - 14.0 * s.slot_period_s, 1e-9);
+    EXPECT_NEAR(w.distance_flown_m(), 10.0 * s.slot_period_s, 1e-12); // through the air
+
+    s.wind_to_rad = M_PI / 2; // crosswind: no component along the line of sight here
+    world c(s);
+    EXPECT_NEAR(c.los_doppler_hz(), 10.0 * inv_lambda, 1e-9);
+    EXPECT_NEAR(c.ground_vy_mps(), 4.0, 1e-12);
+}
+
+// Gusts: first-order Gauss-Markov per axis, stationary std wind_gust_mps and lag
+// correlation exp(-dt / tau).
+TEST(world, gusts_have_the_stated_std_and_correlation_time)
+{
+    scenario s = los_only();
+    s.initial_distance_m = 1e7;
+    s.flight_cap_m = 1e9;
+    s.start_heading_rad = 0.0;
+    s.wind_gust_mps = 1.0;
+    s.wind_gust_tau_s = 1.0;
+    world w(s);
+    std::vector<double> g;
+    for (int k = 0; k < 40000; ++k) {
+        g.push_back(w.ground_vx_mps() - s.speed_mps * std::cos(w.heading_rad()));
+        w.advance(0.0);
+    }
+    double m = 0, v = 0, c = 0;
+    for (double x : g)
+        m += x;
+    m /= g.size();
+    for (std::size_t i = 0; i < g.size(); ++i) {
+        v += (g[i] - m) * (g[i] - m);
+        if (i >= 20)
+            c += (g[i] - m) * (g[i - 20] - m);
+    }
+    v /= g.size();
+    c /= (g.size() - 20);
+    EXPECT_NEAR(std::sqrt(v), 1.0, 0.1);
+    EXPECT_NEAR(c / v, std::exp(-20 * s.slot_period_s / s.wind_gust_tau_s), 0.08);
+}
+
+// The vehicle steers by its compass: it flies the command plus bias plus noise, and
+// reports (through the same compass) the command plus only the heading noise.
+TEST(world, compass_error_is_flown_and_not_reported)
+{
+    scenario s = los_only();
+    s.initial_distance_m = 1e7;
+    s.flight_cap_m = 1e9;
+    s.compass_bias_rad = 3.0 * M_PI / 180.0;
+    s.compass_noise_rad = 2.0 * M_PI / 180.0;
+    s.heading_noise_rad = 1.0 * M_PI / 180.0;
+    world w(s);
+    const double cmd = 0.7;
+    double fm = 0, fv = 0, rm = 0, rv = 0;
+    const int n = 4000;
+    for (int k = 0; k < n; ++k) {
+        w.advance(cmd);
+        const double flown = world::wrap(w.heading_rad() - cmd);
+        const double reported = world::wrap(w.measured_heading_rad() - cmd);
+        EXPECT_NEAR(flown, w.compass_error_rad(), 1e-12);
+        fm += flown;
+        fv += flown * flown;
+        rm += reported;
+        rv += reported * reported;
+    }
+    fm /= n;
+    rm /= n;
+    const double deg = M_PI / 180.0;
+    EXPECT_NEAR(fm / deg, 3.0, 0.15);
+    EXPECT_NEAR(std::sqrt(fv / n - fm * fm) / deg, 2.0, 0.1);
+    EXPECT_NEAR(rm / deg, 0.0, 0.1);
+    EXPECT_NEAR(std::sqrt(rv / n - rm * rm) / deg, 1.0, 0.06);
+}
+
+TEST(world, realistic_preset_and_bad_real_flight_fields)
+{
+    scenario s;
+    s.apply_preset("realistic");
+    EXPECT_EQ(s.altitude_m, 100.0);
+    EXPECT_EQ(s.wind_speed_mps, 4.0);
+    world w(s); // valid
+    for (const char* kv : { "altitude_m=-1",
+                            "wind_speed_mps=nan",
+                            "wind_gust_tau_s=0",
+                            "compass_bias_rad=4",
+                            "compass_noise_rad=-0.1" }) {
+        scenario b;
+        const std::string k(kv);
+        b.set(k.substr(0, k.find('=')), k.substr(k.find('=') + 1));
+        try {
+            b.validate();
+            ADD_FAILURE() << kv << " accepted";
+        } catch (const std::invalid_argument& e) {
+            EXPECT_NE(std::string(e.what()).find(k.substr(0, k.find('='))),
+                      std::string::npos);
+        }
+    }
+}

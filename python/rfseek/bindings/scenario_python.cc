@@ -4,7 +4,7 @@
  */
 
 /* BINDTOOL_HEADER_FILE(scenario.h) */
-/* BINDTOOL_HEADER_FILE_HASH(9f3d3757eb16248f0429528f1cd391e2) */
+/* BINDTOOL_HEADER_FILE_HASH(c54628de0586e4810a1d22834ea65e82) */
 
 #include "kwargs.h"
 #include <gr-rfseek/scenario.h>
@@ -53,6 +53,14 @@ void bind_scenario(py::module& m)
     RW(speed_mps, "v (m/s)");
     RW(heading_noise_rad, "sigma_phi: heading measurement noise (rad)");
     RW(turn_rate_rad_per_s, "maximum turn rate (rad/s); 0 = instantaneous");
+    RW(altitude_m, "UAV height above the emitter (m); scatterers on the ground");
+    RW(wind_speed_mps, "mean wind speed (m/s)");
+    RW(wind_to_rad,
+       "direction the wind blows toward (rad, CCW from east; None: from seed)");
+    RW(wind_gust_mps, "gust standard deviation per axis (m/s), first-order Gauss-Markov");
+    RW(wind_gust_tau_s, "gust correlation time (s)");
+    RW(compass_bias_rad, "compass bias: flown heading = commanded + bias + noise (rad)");
+    RW(compass_noise_rad, "compass noise on the flown heading, white per slot (rad)");
     RW(success_radius_m, "d_v (m)");
     RW(flight_cap_m, "flight cap (m); None = 4 (d - d_v)");
     RW(seed, "seed of every random draw of the run");

@@ -4,7 +4,7 @@
  */
 
 /* BINDTOOL_HEADER_FILE(world.h) */
-/* BINDTOOL_HEADER_FILE_HASH(e80c2924e25ddfc8c16b103da7148496) */
+/* BINDTOOL_HEADER_FILE_HASH(c1030c018ba37880d206ca0292b32d34) */
 
 #include <gr-rfseek/world.h>
 #include <pybind11/complex.h>
@@ -43,6 +43,10 @@ void bind_world(py::module& m)
         .def_property_readonly("cfo_hz", &world::cfo_hz)
         .def_property_readonly("cfo_drift_hz_per_s", &world::cfo_drift_hz_per_s)
         .def_property_readonly("los_doppler_hz", &world::los_doppler_hz)
+        .def_property_readonly("slant_range_m", &world::slant_range_m)
+        .def_property_readonly("ground_vx_mps", &world::ground_vx_mps)
+        .def_property_readonly("ground_vy_mps", &world::ground_vy_mps)
+        .def_property_readonly("compass_error_rad", &world::compass_error_rad)
         .def_property_readonly("amplitude_scale", &world::amplitude_scale)
         .def_property_readonly("noise_power", &world::noise_power)
         .def_property_readonly("arrived", &world::arrived)

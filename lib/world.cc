@@ -148,9 +148,9 @@ void world::draw_measured_heading()
 {
     rng g(d_sc.seed, STREAM_HEADING, d_slot);
     // The compass reads the flown heading minus its error: it believes it flies the
-    // command. (Without compass error this is d_heading + noise, as before.)
-    const double compass = d_compass_err == 0.0 ? d_heading : d_heading - d_compass_err;
-    d_measured_heading = wrap(compass + d_sc.heading_noise_rad * g.normal());
+    // command (x - 0.0 == x: without compass error, the same doubles as before).
+    d_measured_heading =
+        wrap(d_heading - d_compass_err + d_sc.heading_noise_rad * g.normal());
 }
 
 double world::distance_m() const { return std::hypot(d_x, d_y); }
@@ -306,9 +306,7 @@ void world::advance(double commanded_heading_rad)
     // The vehicle steers by its compass: it flies the command plus the compass error,
     // and its compass then reads the flown heading minus that same error.
     draw_compass_error(d_slot + 1);
-    const double target = d_compass_err == 0.0
-                              ? wrap(commanded_heading_rad)
-                              : wrap(commanded_heading_rad + d_compass_err);
+    const double target = wrap(commanded_heading_rad + d_compass_err);
     const double rate = d_sc.turn_rate_rad_per_s;
 
     if (rate <= 0.0) {

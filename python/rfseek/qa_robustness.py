@@ -75,7 +75,9 @@ def estimator_windows(tc):
             tc.assertFalse(e.valid)
 
 
-def controller_nan_fields(tc):
+def controller_answers(posts, n_out):
+    """A seeking_controller's cmd and telemetry messages for the (port, PMT) posts. The
+    controller has no stream to run to completion: wait (at most 10 s) for n_out."""
     ctl = rfseek.seeking_controller(rfseek.seeker_config())
     dbg = blocks.message_debug()
     tb = gr.top_block()
@@ -83,21 +85,29 @@ def controller_nan_fields(tc):
     tb.msg_connect(ctl, "cmd", dbg, "store")
     tb.start()
     try:
-        for i, (k, v) in enumerate((("time", NAN), ("snr_db", INF), ("power_db", NAN),
-                                    ("freq_hz", INF), ("heading", NAN))):
-            d = {"slot": i, "freq_hz": 100.0, "valid": True, "snr_db": 10.0,
-                 "power_db": -10.0, "time": 0.05 * i}
-            d[k] = v
-            ctl._post(pmt.intern("meas"), pmt.to_pmt(d))
+        for port, msg in posts:
+            ctl._post(pmt.intern(port), msg)
         deadline = time.monotonic() + 10
-        while dbg.num_messages() < 10 and time.monotonic() < deadline:
+        while dbg.num_messages() < n_out and time.monotonic() < deadline:
             time.sleep(0.02)
     finally:
         tb.stop()
         tb.wait()
-    tc.assertEqual(dbg.num_messages(), 10)
-    for i in range(dbg.num_messages()):
-        for v in pmt.to_python(dbg.get_message(i)).values():
+    return ctl, [pmt.to_python(dbg.get_message(i)) for i in range(dbg.num_messages())]
+
+
+def controller_nan_fields(tc):
+    posts = []
+    for i, (k, v) in enumerate((("time", NAN), ("snr_db", INF), ("power_db", NAN),
+                                ("freq_hz", INF), ("heading", NAN))):
+        d = {"slot": i, "freq_hz": 100.0, "valid": True, "snr_db": 10.0,
+             "power_db": -10.0, "time": 0.05 * i}
+        d[k] = v
+        posts.append(("meas", pmt.to_pmt(d)))
+    ctl, out = controller_answers(posts, 10)
+    tc.assertEqual(len(out), 10)
+    for m in out:
+        for v in m.values():
             if isinstance(v, float):
                 tc.assertTrue(math.isfinite(v))
     tc.assertEqual(ctl.invalid_count(), 4)  # all but the NaN heading (then not used)
@@ -105,37 +115,35 @@ def controller_nan_fields(tc):
 
 def uint64_numbers(tc):
     """uint64 PMTs where a number is expected (pmt.to_double throws for them)."""
-    ctl = rfseek.seeking_controller(rfseek.seeker_config())
-    dbg = blocks.message_debug()
-    src = rfseek.channel_source(rfseek.scenario(initial_distance_m=300, window_len=64,
-                                                fft_len=64), lockstep=False)
-    tb = gr.top_block()
-    tb.connect(src, blocks.null_sink(gr.sizeof_gr_complex))
-    tb.msg_connect(ctl, "cmd", dbg, "store")
-    tb.start()
-    try:
-        ctl._post(pmt.intern("nav"), pmt.to_pmt({"heading": 1.0}))
+    def dict_of(**kv):
         d = pmt.make_dict()
-        for k, v in (("slot", pmt.from_uint64(0)), ("freq_hz", pmt.from_uint64(100)),
-                     ("valid", pmt.PMT_T), ("time", pmt.from_uint64(1)),
-                     ("heading", pmt.from_uint64(1)), ("snr_db", pmt.from_uint64(20))):
+        for k, v in kv.items():
             d = pmt.dict_add(d, pmt.intern(k), v)
-        ctl._post(pmt.intern("meas"), d)
-        nav = pmt.dict_add(pmt.make_dict(), pmt.intern("heading"), pmt.from_uint64(2))
-        ctl._post(pmt.intern("nav"), nav)
-        cmd = pmt.dict_add(pmt.make_dict(), pmt.intern("heading"), pmt.from_uint64(3))
-        src._post(pmt.intern("cmd"), cmd)
-        deadline = time.monotonic() + 10
-        while dbg.num_messages() < 1 and time.monotonic() < deadline:
-            time.sleep(0.02)
-        time.sleep(0.2)
-    finally:
-        tb.stop()
-        tb.wait()
-    tc.assertEqual(dbg.num_messages(), 1)
+        return d
+    u = pmt.from_uint64
+    ctl, out = controller_answers(
+        [("nav", dict_of(heading=u(2))),
+         ("meas", dict_of(slot=u(0), freq_hz=u(100), valid=pmt.PMT_T, time=u(1),
+                          heading=u(1), snr_db=u(20)))], 2)
+    tc.assertEqual(len(out), 2)  # one cmd, one telemetry
     tc.assertEqual(ctl.malformed_count(), 0)
     tc.assertEqual(ctl.meas_count(), 1)
+    # channel_source, free-running, run to completion: a uint64 heading (3 rad, toward
+    # the emitter from where it starts) is flown, so the run arrives instead of flying
+    # away at heading 0 to the cap.
+    sc = rfseek.scenario(initial_distance_m=300, start_angle_rad=0.0, start_heading_rad=0.0,
+                         num_scatterers=0, window_len=64, fft_len=64, heading_noise_rad=0.0)
+    src = rfseek.channel_source(sc, lockstep=False)
+    states = blocks.message_debug()
+    tb = gr.top_block()
+    tb.connect(src, blocks.null_sink(gr.sizeof_gr_complex))
+    tb.msg_connect(src, "state", states, "store")
+    src._post(pmt.intern("cmd"), dict_of(heading=u(3)))
+    tb.run()
+    last = pmt.to_python(states.get_message(states.num_messages() - 1))
     tc.assertEqual(src.malformed_count(), 0)
+    tc.assertTrue(last["arrived"])
+    tc.assertAlmostEqual(last["heading"], 3.0)
 
 
 MC = os.path.join(BUILD, "apps", "rfseek-montecarlo")

@@ -58,6 +58,10 @@ flown to reach the success radius, per strategy, on the same seeds.
   --preset P[,Q...]     named scenario variants (the study is repeated for each;
                         --set values apply on top); --preset list shows them
   --sweep KEY=V1,V2,..  repeat the study for each value of one --set key
+  --arrival MODE        oracle (default: the run ends at d_v, the paper's table) or self
+                        (the vehicle detects its overflight, loiters and locates the
+                        emitter; the run ends at its fix; rows get the arrival and
+                        location columns; same as --set self_arrival=true)
   --resume              keep the rows already in the CSV (same study: same --set,
                         --preset, --sweep), run only the missing ones, then write the
                         JSON summary of the whole CSV
@@ -156,6 +160,10 @@ struct row {
     std::uint64_t slots = 0;
     bool has_stage1 = false;
     double stage1_deg = 0;
+    // --arrival self (docs/seeker.md): the arrival and location columns
+    bool arrival = false, declared = false, false_arrival = false, located = false,
+         in_ellipse = false;
+    double detect_m = 0, loc_err_m = 0, loc_major_m = 0;
     std::string error; // non-empty: the run raised; not in the statistics
 };
 std::string preset_list()
@@ -244,8 +252,9 @@ double fftw_floor_us(int n)
 // Statistics over the rows that ran (error rows are counted apart).
 std::string summary_json(const std::vector<const row*>& rows, double shortest)
 {
-    std::vector<double> d, ratio, s1;
-    int success = 0, errors = 0;
+    std::vector<double> d, ratio, s1, detect, loc_err, major;
+    int success = 0, errors = 0, declared = 0, near = 0, false_arr = 0, inside = 0;
+    bool arrival = false;
     double t = 0.0;
     for (const row* r : rows) {
         if (!r->error.empty()) {
@@ -258,6 +267,18 @@ std::string summary_json(const std::vector<const row*>& rows, double shortest)
         t += r->time_s;
         if (r->has_stage1)
             s1.push_back(std::abs(r->stage1_deg));
+        arrival = arrival || r->arrival;
+        if (r->declared) {
+            ++declared;
+            detect.push_back(r->detect_m);
+            near += r->detect_m <= 300.0;
+        }
+        false_arr += r->false_arrival;
+        if (r->located) {
+            loc_err.push_back(r->loc_err_m);
+            major.push_back(r->loc_major_m);
+            inside += r->in_ellipse;
+        }
     }
     double md = 0, mr = 0;
     for (std::size_t i = 0; i < d.size(); ++i) {
@@ -277,7 +298,22 @@ std::string summary_json(const std::vector<const row*>& rows, double shortest)
       << ", \"shortest_path_m\": " << jnum(shortest)
       << ", \"mean_time_s\": " << jnum(t / n)
       << ", \"stage1_abs_error_deg_median\": " << jnum(percentile(s1, 0.5))
-      << ", \"stage1_abs_error_deg_p90\": " << jnum(percentile(s1, 0.9)) << "}";
+      << ", \"stage1_abs_error_deg_p90\": " << jnum(percentile(s1, 0.9));
+    if (arrival) {
+        const double nl = std::max<std::size_t>(loc_err.size(), 1);
+        o << ", \"declared_rate\": " << jnum(declared / n)
+          << ", \"declared_within_300m_rate\": " << jnum(near / n)
+          << ", \"false_arrival_rate\": " << jnum(false_arr / n)
+          << ", \"arrival_detect_distance_m_median\": " << jnum(percentile(detect, 0.5))
+          << ", \"arrival_detect_distance_m_p90\": " << jnum(percentile(detect, 0.9))
+          << ", \"arrival_detect_distance_m_p99\": " << jnum(percentile(detect, 0.99))
+          << ", \"located_rate\": " << jnum(loc_err.size() / n)
+          << ", \"location_error_m_median\": " << jnum(percentile(loc_err, 0.5))
+          << ", \"location_error_m_p90\": " << jnum(percentile(loc_err, 0.9))
+          << ", \"location_major_m_median\": " << jnum(percentile(major, 0.5))
+          << ", \"location_in_ellipse_rate\": " << jnum(inside / nl);
+    }
+    o << "}";
     return o.str();
 }
 
@@ -297,6 +333,14 @@ void fill(row& r, const run_summary& s)
     r.has_stage1 = s.has_stage1;
     r.stage1_deg =
         s.has_stage1 ? printed(s.stage1_heading_error_rad * 180.0 / M_PI) : 0.0;
+    r.arrival = s.self_arrival;
+    r.declared = s.declared;
+    r.detect_m = s.declared ? printed(s.arrival_detect_distance_m) : 0.0;
+    r.false_arrival = s.false_arrival;
+    r.located = s.located;
+    r.loc_err_m = s.located ? printed(s.location_error_m) : 0.0;
+    r.loc_major_m = s.located ? printed(s.location_major_m) : 0.0;
+    r.in_ellipse = s.location_in_ellipse;
     r.error.clear();
     r.done = true;
 }
@@ -310,12 +354,17 @@ std::string one_line(std::string s)
 }
 
 struct csv_layout {
-    bool by_preset = false, by_sweep = false;
+    bool by_preset = false, by_sweep = false, by_arrival = false;
+    static constexpr std::size_t arrival_columns = 7;
     std::string header() const
     {
         return std::string("seed,strategy") + (by_preset ? ",preset" : "") +
                (by_sweep ? ",sweep_value" : "") +
-               ",distance_m,ratio,time_s,success,slots,stage1_heading_error_deg,error";
+               ",distance_m,ratio,time_s,success,slots,stage1_heading_error_deg" +
+               (by_arrival ? ",declared,arrival_detect_distance_m,false_arrival,located,"
+                             "location_error_m,location_major_m,location_in_ellipse"
+                           : "") +
+               ",error";
     }
     std::string line(const row& r, const std::vector<study_point>& points) const
     {
@@ -330,7 +379,19 @@ struct csv_layout {
               << jnum(r.time_s) << "," << (r.success ? 1 : 0) << "," << r.slots << ","
               << (r.has_stage1 ? jnum(r.stage1_deg) : "") << ",";
         else
-            c << ",,,,,,," << one_line(r.error);
+            c << ",,,,,,";
+        if (by_arrival) {
+            if (r.error.empty())
+                c << (r.declared ? 1 : 0) << "," << (r.declared ? jnum(r.detect_m) : "")
+                  << "," << (r.false_arrival ? 1 : 0) << "," << (r.located ? 1 : 0) << ","
+                  << (r.located ? jnum(r.loc_err_m) : "") << ","
+                  << (r.located ? jnum(r.loc_major_m) : "") << ","
+                  << (r.in_ellipse ? 1 : 0) << ",";
+            else
+                c << ",,,,,,,";
+        }
+        if (!r.error.empty())
+            c << "," << one_line(r.error);
         return c.str() + "\n";
     }
 };
@@ -417,7 +478,8 @@ std::size_t load_rows(const std::string& csv,
         if (!line.empty() && line.back() == ',')
             c.emplace_back();
         const std::size_t base = 2 + lay.by_preset + lay.by_sweep;
-        if (c.size() != base + 7) {
+        const std::size_t extra = lay.by_arrival ? csv_layout::arrival_columns : 0;
+        if (c.size() != base + 7 + extra) {
             ++dropped;
             continue;
         }
@@ -437,7 +499,7 @@ std::size_t load_rows(const std::string& csv,
             r.strategy = *st;
             r.seed = seed;
             r.point = pi;
-            r.error = c[k + 6];
+            r.error = c[k + 6 + extra];
             if (r.error.empty()) {
                 r.distance_m = num("distance_m", c[k]);
                 r.ratio = num("ratio", c[k + 1]);
@@ -446,6 +508,17 @@ std::size_t load_rows(const std::string& csv,
                 r.slots = std::stoull(c[k + 4]);
                 r.has_stage1 = !c[k + 5].empty();
                 r.stage1_deg = r.has_stage1 ? num("stage1", c[k + 5]) : 0.0;
+                if (lay.by_arrival) {
+                    const std::size_t a = k + 6;
+                    r.arrival = true;
+                    r.declared = c[a] == "1";
+                    r.detect_m = r.declared ? num("arrival_detect", c[a + 1]) : 0.0;
+                    r.false_arrival = c[a + 2] == "1";
+                    r.located = c[a + 3] == "1";
+                    r.loc_err_m = r.located ? num("location_error", c[a + 4]) : 0.0;
+                    r.loc_major_m = r.located ? num("location_major", c[a + 5]) : 0.0;
+                    r.in_ellipse = c[a + 6] == "1";
+                }
             }
             r.done = true;
             auto& slot = rows[ix.job(pi, st - ix.strategies.begin(), seed - ix.seed)];
@@ -563,7 +636,7 @@ int main(int argc, char** argv)
     std::string sweep_key;
     std::vector<std::string> sweep_values{ "" };
     std::vector<std::string> presets{ "" };
-    bool quiet = false, resume = false;
+    bool quiet = false, resume = false, arrival_self = false;
     std::string scheduler, python = "/usr/bin/python3";
     int dask_local = 0, dask_chunk = 0;
     double dask_timeout = 10.0;
@@ -627,6 +700,12 @@ int main(int argc, char** argv)
                 sweep_values = split(s.substr(p + 1), ',');
                 if (sweep_values.empty())
                     throw std::invalid_argument("--sweep needs at least one value");
+            } else if (a == "--arrival") {
+                const std::string v = next();
+                if (v != "self" && v != "oracle")
+                    throw std::invalid_argument("--arrival = '" + v +
+                                                "': must be self or oracle");
+                arrival_self = v == "self";
             } else if (a == "--resume") {
                 resume = true;
             } else if (a == "--scheduler") {
@@ -664,6 +743,8 @@ int main(int argc, char** argv)
                 throw std::invalid_argument("cannot write " + f + " (--out / --csv)");
             std::remove(probe.c_str());
         }
+        if (arrival_self)
+            given.emplace_back("self_arrival", "true");
         // Build and validate every configuration before the long run starts.
         for (const auto& p : presets)
             for (const auto& v : sweep_values) {
@@ -677,7 +758,10 @@ int main(int argc, char** argv)
     const bool by_preset = !presets.front().empty();
     const bool by_sweep = !sweep_key.empty();
     const bool use_dask = !scheduler.empty() || dask_local > 0;
-    const csv_layout lay{ by_preset, by_sweep };
+    bool by_arrival = false;
+    for (const auto& p : points)
+        by_arrival = by_arrival || p.scenario_config().self_arrival;
+    const csv_layout lay{ by_preset, by_sweep, by_arrival };
     const study_index ix{ &points, strategies, seed, runs };
     const std::string study_file = csv + ".study";
     const std::string study_text = fingerprint(points, seed);
@@ -803,11 +887,18 @@ int main(int argc, char** argv)
             row& r = rows[j];
             if (kind == "ROW") {
                 run_summary s;
-                int success = 0, has1 = 0;
+                int success = 0, has1 = 0, arr = 0, decl = 0, fa = 0, loc = 0, in = 0;
                 ss >> s.distance_m >> s.ratio >> s.time_s >> success >> s.slots >> has1 >>
-                    s.stage1_heading_error_rad;
+                    s.stage1_heading_error_rad >> arr >> decl >>
+                    s.arrival_detect_distance_m >> fa >> loc >> s.location_error_m >>
+                    s.location_major_m >> in;
                 s.success = success;
                 s.has_stage1 = has1;
+                s.self_arrival = arr;
+                s.declared = decl;
+                s.false_arrival = fa;
+                s.located = loc;
+                s.location_in_ellipse = in;
                 fill(r, s);
             } else {
                 std::string msg;
@@ -954,6 +1045,15 @@ int main(int argc, char** argv)
               << ", \"success\": " << (r.success ? "true" : "false")
               << ", \"slots\": " << r.slots << ", \"stage1_heading_error_deg\": "
               << (r.has_stage1 ? jnum(r.stage1_deg) : "null");
+        if (r.error.empty() && r.arrival)
+            j << ", \"declared\": " << (r.declared ? "true" : "false")
+              << ", \"arrival_detect_distance_m\": "
+              << (r.declared ? jnum(r.detect_m) : "null")
+              << ", \"false_arrival\": " << (r.false_arrival ? "true" : "false")
+              << ", \"located\": " << (r.located ? "true" : "false")
+              << ", \"location_error_m\": " << (r.located ? jnum(r.loc_err_m) : "null")
+              << ", \"location_major_m\": " << (r.located ? jnum(r.loc_major_m) : "null")
+              << ", \"location_in_ellipse\": " << (r.in_ellipse ? "true" : "false");
         j << "}" << (i + 1 < rows.size() ? "," : "") << "\n";
     }
     // "summary": the last point's (the only one without presets or a sweep).

@@ -122,6 +122,7 @@ const std::vector<field>& fields()
         RFSEEK_FIELD(compass_noise_rad, kind::real),
         RFSEEK_FIELD(success_radius_m, kind::real),
         RFSEEK_FIELD(flight_cap_m, kind::optional_real),
+        RFSEEK_FIELD(self_arrival, kind::boolean),
         RFSEEK_FIELD(seed, kind::unsigned64),
     };
     return f;

@@ -104,6 +104,26 @@ void seeker_config::validate() const
             "in [adaptive_delta_min_rad, pi/2)");
     if (!(adaptive_reacquire_rad > 0.0 && adaptive_reacquire_rad <= M_PI / 2))
         bad("adaptive_reacquire_rad", adaptive_reacquire_rad, "in (0, pi/2]");
+    if (!(arrival_swing > 0.0 && arrival_swing <= 2.0))
+        bad("arrival_swing", arrival_swing, "in (0, 2] (x f_d,max)");
+    if (!(arrival_window_s > 0.0 && arrival_window_s <= 3600.0))
+        bad("arrival_window_s", arrival_window_s, "in (0, 3600] s");
+    if (!(arrival_heading_band_rad > 0.0 && arrival_heading_band_rad <= M_PI))
+        bad("arrival_heading_band_rad", arrival_heading_band_rad, "in (0, pi]");
+    if (!(arrival_power_rise_db >= 0.0 && arrival_power_rise_db <= 100.0))
+        bad("arrival_power_rise_db", arrival_power_rise_db, "in [0, 100] dB");
+    if (arrival_block_slots < 1 || arrival_block_slots > 100000)
+        bad("arrival_block_slots", arrival_block_slots, "in [1, 100000]");
+    if (arrival_confirm_blocks < 1 || arrival_confirm_blocks > 1000)
+        bad("arrival_confirm_blocks", arrival_confirm_blocks, "in [1, 1000]");
+    if (!(loiter_radius_m >= speed_mps * slot_period_s / M_PI && loiter_radius_m <= 1e5))
+        bad("loiter_radius_m", loiter_radius_m, "in [v T_slot / pi, 1e5] m");
+    if (!(locate_orbits > 0.0 && locate_orbits <= 100.0))
+        bad("locate_orbits", locate_orbits, "in (0, 100]");
+    if (!(locate_max_orbits >= locate_orbits && locate_max_orbits <= 1000.0))
+        bad("locate_max_orbits", locate_max_orbits, "in [locate_orbits, 1000]");
+    if (!(locate_max_axis_m > 0.0) || !std::isfinite(locate_max_axis_m))
+        bad("locate_max_axis_m", locate_max_axis_m, "> 0");
     if (initial_heading_rad && !std::isfinite(*initial_heading_rad))
         bad("initial_heading_rad", *initial_heading_rad, "finite");
 }
@@ -143,7 +163,19 @@ std::vector<std::string> seeker_config::keys()
              "adaptive_delta_max_deg",
              "adaptive_reacquire_rad",
              "adaptive_reacquire_deg",
-             "adaptive_drift" };
+             "adaptive_drift",
+             "self_arrival",
+             "arrival_swing",
+             "arrival_window_s",
+             "arrival_heading_band_rad",
+             "arrival_heading_band_deg",
+             "arrival_power_rise_db",
+             "arrival_block_slots",
+             "arrival_confirm_blocks",
+             "loiter_radius_m",
+             "locate_orbits",
+             "locate_max_orbits",
+             "locate_max_axis_m" };
 }
 
 void seeker_config::set(const std::string& key, const std::string& value)
@@ -242,6 +274,30 @@ void seeker_config::set(const std::string& key, const std::string& value)
         adaptive_reacquire_rad = number() * M_PI / 180.0;
     else if (key == "adaptive_drift")
         adaptive_drift = boolean();
+    else if (key == "self_arrival")
+        self_arrival = boolean();
+    else if (key == "arrival_swing")
+        arrival_swing = number();
+    else if (key == "arrival_window_s")
+        arrival_window_s = number();
+    else if (key == "arrival_heading_band_rad")
+        arrival_heading_band_rad = number();
+    else if (key == "arrival_heading_band_deg")
+        arrival_heading_band_rad = number() * M_PI / 180.0;
+    else if (key == "arrival_power_rise_db")
+        arrival_power_rise_db = number();
+    else if (key == "arrival_block_slots")
+        arrival_block_slots = integer();
+    else if (key == "arrival_confirm_blocks")
+        arrival_confirm_blocks = integer();
+    else if (key == "loiter_radius_m")
+        loiter_radius_m = number();
+    else if (key == "locate_orbits")
+        locate_orbits = number();
+    else if (key == "locate_max_orbits")
+        locate_max_orbits = number();
+    else if (key == "locate_max_axis_m")
+        locate_max_axis_m = number();
     else
         throw std::invalid_argument("seeker_config: unknown parameter '" + key + "'");
 }
@@ -254,6 +310,11 @@ std::vector<std::string> seeker::strategies()
 std::unique_ptr<seeker> seeker::make(const seeker_config& cfg)
 {
     cfg.validate();
+    if (cfg.self_arrival) {
+        seeker_config inner = cfg;
+        inner.self_arrival = false;
+        return make_homing_seeker(cfg, make(inner));
+    }
     if (cfg.strategy == "rss_baseline")
         return make_rss_seeker(cfg);
     if (cfg.strategy == "adaptive")

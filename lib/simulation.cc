@@ -50,6 +50,7 @@ seeker_config simulation::seeker_for(const scenario& sc, const std::string& stra
     c.slot_period_s = sc.slot_period_s;
     c.turn_rate_rad_per_s = sc.turn_rate_rad_per_s;
     c.seed = sc.seed;
+    c.self_arrival = sc.self_arrival;
     return c;
 }
 
@@ -84,6 +85,30 @@ run_result simulation::run(bool keep_records) const
                 world::wrap(c.theta_est_rad - w.bearing_to_emitter_rad());
         }
         prev_stage = c.stage;
+        run_summary& sm = r.summary;
+        if (c.status >= 1 && !sm.declared) {
+            sm.declared = true;
+            sm.arrival_time_s = w.time_s();
+            sm.arrival_detect_distance_m = w.distance_m();
+            sm.false_arrival = sm.arrival_detect_distance_m > 1000.0;
+        }
+        if (c.status == 2 && !sm.located && c.location.valid) {
+            sm.located = true;
+            r.location = c.location;
+            r.location_vehicle_x_m = w.x_m();
+            r.location_vehicle_y_m = w.y_m();
+            // The emitter is at the origin: its true offset from the vehicle is -x, -y.
+            const double ex = c.location.east_m + w.x_m();
+            const double ey = c.location.north_m + w.y_m();
+            sm.location_error_m = std::hypot(ex, ey);
+            sm.location_major_m = c.location.major_m;
+            sm.location_minor_m = c.location.minor_m;
+            const double ca = std::cos(c.location.major_angle_rad);
+            const double sa = std::sin(c.location.major_angle_rad);
+            const double u = (ex * ca + ey * sa) / std::max(c.location.major_m, 1e-9);
+            const double v = (-ex * sa + ey * ca) / std::max(c.location.minor_m, 1e-9);
+            sm.location_in_ellipse = u * u + v * v <= 1.0;
+        }
         if (keep_records) {
             slot_record s;
             s.slot = w.slot();
@@ -105,7 +130,12 @@ run_result simulation::run(bool keep_records) const
             s.theta_est_rad = c.theta_est_rad;
             s.cmd_heading_rad = c.heading_rad;
             s.update = c.update;
+            s.status = c.status;
             r.records.push_back(s);
+        }
+        if (d_sc.self_arrival && c.done) {
+            w.end_run();
+            break;
         }
         w.advance(c.heading_rad);
     }
@@ -113,11 +143,14 @@ run_result simulation::run(bool keep_records) const
     run_summary& s = r.summary;
     s.strategy = d_cfg.strategy;
     s.seed = d_sc.seed;
-    s.distance_m = w.distance_flown_m();
+    s.self_arrival = d_sc.self_arrival;
+    s.total_distance_m = w.distance_flown_m();
+    s.distance_m =
+        d_sc.self_arrival && w.reached() ? w.reached_flown_m() : w.distance_flown_m();
     s.shortest_path_m = d_sc.shortest_path_m();
     s.ratio = s.shortest_path_m > 0.0 ? s.distance_m / s.shortest_path_m : 0.0;
     s.time_s = w.time_s();
-    s.success = w.arrived();
+    s.success = d_sc.self_arrival ? w.reached() : w.arrived();
     s.slots = w.slot();
     s.updates = sk->updates();
     return r;

@@ -23,6 +23,9 @@ namespace rfseek {
 std::unique_ptr<seeker> make_two_stage_seeker(const seeker_config& cfg);
 std::unique_ptr<seeker> make_rss_seeker(const seeker_config& cfg);
 std::unique_ptr<seeker> make_adaptive_seeker(const seeker_config& cfg);
+//! Any strategy with arrival detection, loiter and location (homing_seeker.cc).
+std::unique_ptr<seeker> make_homing_seeker(const seeker_config& cfg,
+                                           std::unique_ptr<seeker> strategy);
 
 //! The eq. 4 filter as a strategy's configuration asks for it.
 inline outlier_filter make_outlier_filter(const seeker_config& cfg)

@@ -87,7 +87,7 @@ world::world(const scenario& sc) : d_sc(sc)
 
     update_amplitude();
     draw_measured_heading();
-    d_arrived = distance_m() <= d_sc.success_radius_m;
+    update_arrival();
 }
 
 bool world::flat_and_calm() const
@@ -354,9 +354,18 @@ void world::advance(double commanded_heading_rad)
         d_cfo_drift * dt + d_sc.cfo_walk_hz_per_sqrt_s * std::sqrt(dt) * g.normal();
 
     ++d_slot;
-    d_arrived = distance_m() <= d_sc.success_radius_m;
-    d_capped = !d_arrived && d_flown >= d_sc.effective_flight_cap_m() - 1e-9;
+    update_arrival();
+    d_capped = !finished() && d_flown >= d_sc.effective_flight_cap_m() - 1e-9;
     draw_measured_heading();
+}
+
+void world::update_arrival()
+{
+    d_arrived = distance_m() <= d_sc.success_radius_m;
+    if (d_arrived && !d_reached) {
+        d_reached = true;
+        d_reached_flown = d_flown;
+    }
 }
 
 void world::reconfigure(const std::function<void(scenario&)>& change)

@@ -72,6 +72,12 @@ struct RFSEEK_API scenario {
     // Run
     double success_radius_m = 200.0;    //!< d_v
     std::optional<double> flight_cap_m; //!< default 4 (d - d_v)
+    /*!
+     * The run ends when the vehicle itself declares it is done (seeker_config::
+     * self_arrival: located, or given up), not at d_v; d_v stays a study metric
+     * (world::arrived()). False: the paper's runs, ended by the truth at d_v.
+     */
+    bool self_arrival = false;
     std::uint64_t seed = 1;
 
     //! Throws std::invalid_argument("scenario.<field> = <value>: must be ...").

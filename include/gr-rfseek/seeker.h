@@ -12,6 +12,7 @@
 #define INCLUDED_RFSEEK_SEEKER_H
 
 #include <gr-rfseek/api.h>
+#include <gr-rfseek/arrival.h>
 #include <cstdint>
 #include <memory>
 #include <optional>
@@ -72,6 +73,22 @@ struct RFSEEK_API seeker_config {
     //! Estimated errors beyond this (or flying away) start a new acquisition.
     double adaptive_reacquire_rad = 1.0471975511965976; //!< 60 deg
     bool adaptive_drift = true; //!< fit (and so cancel) a linear CFO drift per cycle
+    // Arrival without truth (docs/seeker.md "Arrival and location"), any strategy.
+    //! Detect the overflight, loiter on an orbit and locate the emitter; false: fly the
+    //! strategy only (the paper's runs end at the simulator's d_v).
+    bool self_arrival = false;
+    double arrival_swing = 0.8;     //!< frequency drop beyond turns, x f_d,max
+    double arrival_window_s = 60.0; //!< the drop must happen within this time
+    double arrival_heading_band_rad = 1.0471975511965976; //!< 60 deg spread allowed
+    double arrival_power_rise_db = 2.0; //!< power peak over the drop's lower end
+    int arrival_block_slots = 40;       //!< slots per median block
+    int arrival_confirm_blocks = 2;     //!< consecutive blocks with the signature
+    double loiter_radius_m = 50.0;      //!< orbit radius (turn rate v / R, to the left)
+    //! Orbits of data before the first location fit (then every quarter orbit).
+    double locate_orbits = 1.0;
+    double locate_max_orbits = 3.0; //!< give up (done, not located) after this many
+    //! A fix is published (located) when its 95 % ellipse's semi-major axis is below.
+    double locate_max_axis_m = 100.0;
 
     double max_doppler_hz() const;
     double effective_outlier_threshold_hz() const;
@@ -110,6 +127,11 @@ struct RFSEEK_API command {
     bool holding = false; //!< holding course for lack of measurements
     double filtered_freq_hz = 0.0; //!< the eq. 4 output for this measurement
     bool accepted = false;         //!< eq. 4 accepted this measurement
+    //! Mission status (self_arrival): 0 seeking, 1 arrived (loitering), 2 located.
+    int status = 0;
+    //! self_arrival: the mission is over (located, or gave up after locate_max_orbits).
+    bool done = false;
+    emitter_location location; //!< the latest fix (valid once located)
 };
 
 class RFSEEK_API seeker

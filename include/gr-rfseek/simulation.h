@@ -49,6 +49,7 @@ struct RFSEEK_API slot_record {
     double theta_est_rad = 0.0;
     double cmd_heading_rad = 0.0;
     bool update = false;
+    int status = 0; //!< 0 seeking, 1 arrived (loitering), 2 located (self_arrival)
 };
 
 struct RFSEEK_API run_summary {
@@ -64,6 +65,19 @@ struct RFSEEK_API run_summary {
     double stage1_heading_error_rad =
         0.0;                   //!< theta_0 minus the true bearing, at the decision
     std::uint64_t updates = 0; //!< Stage-2 updates applied
+    // Arrival without truth (scenario::self_arrival; docs/seeker.md). In that mode
+    // distance_m, ratio and success are taken when d_v was first reached.
+    bool self_arrival = false;
+    bool declared = false; //!< the vehicle declared its arrival (overflight)
+    double arrival_time_s = 0.0;
+    double arrival_detect_distance_m = 0.0; //!< true horizontal distance then
+    bool false_arrival = false;             //!< declared more than 1 km away
+    bool located = false;                   //!< a location fix was published
+    double location_error_m = 0.0; //!< |estimated - true| emitter offset at the fix
+    double location_major_m = 0.0; //!< 95 % ellipse semi-axes of the fix
+    double location_minor_m = 0.0;
+    bool location_in_ellipse = false; //!< the truth lies inside the 95 % ellipse
+    double total_distance_m = 0.0;    //!< flown until the run ended (loiter included)
 };
 
 struct RFSEEK_API run_result {
@@ -71,6 +85,9 @@ struct RFSEEK_API run_result {
     std::vector<slot_record> records;
     std::vector<scatterer> scatterers;
     double emitter_x_m = 0.0, emitter_y_m = 0.0;
+    //! self_arrival: the first fix and where the vehicle truly was then.
+    emitter_location location;
+    double location_vehicle_x_m = 0.0, location_vehicle_y_m = 0.0;
 };
 
 class RFSEEK_API simulation

@@ -87,9 +87,21 @@ public:
     //! Instantaneous per-sample SNR of this slot's beacon (dB).
     double snr_db() const;
 
+    //! Within d_v of the emitter (horizontal). Ends the run unless self_arrival.
     bool arrived() const { return d_arrived; }
+    //! Has been within d_v at some slot (the same as arrived() without self_arrival).
+    bool reached() const { return d_reached; }
+    //! Distance flown when d_v was first reached (0 if not reached).
+    double reached_flown_m() const { return d_reached_flown; }
     bool capped() const { return d_capped; }
-    bool finished() const { return d_arrived || d_capped; }
+    //! self_arrival: the vehicle declared the run over (end_run()).
+    bool ended() const { return d_ended; }
+    bool finished() const
+    {
+        return (d_arrived && !d_sc.self_arrival) || d_capped || d_ended;
+    }
+    //! End the run now (the vehicle declared it is done); finished() from then on.
+    void end_run() { d_ended = true; }
 
     /*!
      * Synthesise n samples of the current slot: the beacon in the first
@@ -144,7 +156,9 @@ private:
     double d_wind_x = 0.0, d_wind_y = 0.0; // mean wind
     double d_gust_x = 0.0, d_gust_y = 0.0; // gusts (Gauss-Markov), this slot
     double d_compass_err = 0.0;            // flown - commanded, this slot
-    bool d_arrived = false, d_capped = false;
+    bool d_arrived = false, d_capped = false, d_reached = false, d_ended = false;
+    double d_reached_flown = 0.0;
+    void update_arrival();
 };
 
 } // namespace rfseek

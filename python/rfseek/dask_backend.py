@@ -10,6 +10,8 @@ processes), prints ``READY <workers>``, sends chunks of runs (one study point, o
 strategy, a range of seeds) to the workers and prints one line per run as chunks finish:
 
     ROW <job> <distance_m> <ratio> <time_s> <success> <slots> <has_stage1> <stage1_rad>
+        <self_arrival> <declared> <detect_m> <false_arrival> <located> <loc_error_m>
+        <loc_major_m> <in_ellipse>
     ERR <job> <message>
 
 Each worker runs ``study_point.run(strategy, seed)``, the C++ core through the bindings,
@@ -48,9 +50,12 @@ def run_chunk(spec, strategy, jobs):
     for job, seed in jobs:
         try:
             s = p.run(strategy, int(seed))
-            out.append("ROW %d %r %r %r %d %d %d %r" % (
+            out.append("ROW %d %r %r %r %d %d %d %r %d %d %r %d %d %r %r %d" % (
                 job, s.distance_m, s.ratio, s.time_s, int(s.success), s.slots,
-                int(s.has_stage1), s.stage1_heading_error_rad))
+                int(s.has_stage1), s.stage1_heading_error_rad, int(s.self_arrival),
+                int(s.declared), s.arrival_detect_distance_m, int(s.false_arrival),
+                int(s.located), s.location_error_m, s.location_major_m,
+                int(s.location_in_ellipse)))
         except Exception as e:  # a run that raises is a row with its error
             out.append("ERR %d %s: %s" % (job, type(e).__name__, " ".join(str(e).split())))
     return out

@@ -16,6 +16,7 @@ void bind_tone_estimator(py::module& m);
 void bind_burst_detector(py::module& m);
 void bind_channel_source(py::module& m);
 void bind_doppler_estimator(py::module& m);
+void bind_arrival(py::module& m);
 void bind_seeker(py::module& m);
 void bind_simulation(py::module& m);
 void bind_study(py::module& m);
@@ -33,6 +34,7 @@ PYBIND11_MODULE(rfseek_python, m)
     bind_burst_detector(m);
     bind_channel_source(m);
     bind_doppler_estimator(m);
+    bind_arrival(m);
     bind_seeker(m);
     bind_simulation(m);
     bind_study(m);

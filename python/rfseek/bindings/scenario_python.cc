@@ -4,7 +4,7 @@
  */
 
 /* BINDTOOL_HEADER_FILE(scenario.h) */
-/* BINDTOOL_HEADER_FILE_HASH(c54628de0586e4810a1d22834ea65e82) */
+/* BINDTOOL_HEADER_FILE_HASH(32b72ba5024536db3ab8491779dc7791) */
 
 #include "kwargs.h"
 #include <gr-rfseek/scenario.h>
@@ -63,6 +63,9 @@ void bind_scenario(py::module& m)
     RW(compass_noise_rad, "compass noise on the flown heading, white per slot (rad)");
     RW(success_radius_m, "d_v (m)");
     RW(flight_cap_m, "flight cap (m); None = 4 (d - d_v)");
+    RW(self_arrival,
+       "the run ends on the vehicle's own declaration (seeker_config.self_arrival); d_v "
+       "stays a metric");
     RW(seed, "seed of every random draw of the run");
 #undef RW
     c.def("validate", &scenario::validate, "Raise ValueError naming a bad field.")

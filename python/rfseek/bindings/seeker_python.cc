@@ -4,7 +4,7 @@
  */
 
 /* BINDTOOL_HEADER_FILE(seeker.h) */
-/* BINDTOOL_HEADER_FILE_HASH(3092b6cdee65c5c504f495ccb74a22e5) */
+/* BINDTOOL_HEADER_FILE_HASH(2bc0760e86867b0f53ad1eed4e76b2cc) */
 
 #include "kwargs.h"
 #include <gr-rfseek/seeker.h>
@@ -64,6 +64,21 @@ void bind_seeker(py::module& m)
     RW(adaptive_reacquire_rad,
        "adaptive: errors beyond this start a new acquisition (rad)");
     RW(adaptive_drift, "adaptive: fit a linear CFO drift per probe cycle");
+    RW(self_arrival,
+       "detect the overflight, loiter and locate the emitter (any strategy); False: the "
+       "strategy only");
+    RW(arrival_swing, "overflight: frequency drop beyond turns, x f_d,max");
+    RW(arrival_window_s, "overflight: the drop must happen within this time (s)");
+    RW(arrival_heading_band_rad,
+       "overflight: heading spread allowed over the drop (rad)");
+    RW(arrival_power_rise_db, "overflight: power peak above the drop's lower end (dB)");
+    RW(arrival_block_slots, "overflight: slots per median block");
+    RW(arrival_confirm_blocks, "overflight: consecutive blocks with the signature");
+    RW(loiter_radius_m, "loiter orbit radius (m), flown to the left");
+    RW(locate_orbits, "orbits of data before the first location fit");
+    RW(locate_max_orbits, "give up locating after this many orbits");
+    RW(locate_max_axis_m,
+       "publish a fix when its 95 % ellipse semi-major axis is below (m)");
 #undef RW
     c.def("validate", &seeker_config::validate)
         .def_static("keys", &seeker_config::keys)
@@ -93,7 +108,10 @@ void bind_seeker(py::module& m)
         .def_readonly("update", &command::update)
         .def_readonly("holding", &command::holding)
         .def_readonly("filtered_freq_hz", &command::filtered_freq_hz)
-        .def_readonly("accepted", &command::accepted);
+        .def_readonly("accepted", &command::accepted)
+        .def_readonly("status", &command::status, "0 seeking, 1 arrived, 2 located")
+        .def_readonly("done", &command::done)
+        .def_readonly("location", &command::location);
 
     py::class_<seeker, std::unique_ptr<seeker>>(m, "seeker", "A seeking strategy.")
         .def(py::init(&seeker::make), py::arg("config"))

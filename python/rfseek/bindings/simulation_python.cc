@@ -4,7 +4,7 @@
  */
 
 /* BINDTOOL_HEADER_FILE(simulation.h) */
-/* BINDTOOL_HEADER_FILE_HASH(2bdd173259923fc5a75dfcc7651de165) */
+/* BINDTOOL_HEADER_FILE_HASH(95e9f46355bdcf791f0110b1d9afc959) */
 
 #include <gr-rfseek/simulation.h>
 #include <pybind11/numpy.h>
@@ -45,7 +45,19 @@ void bind_simulation(py::module& m)
         .def_readonly("slots", &run_summary::slots)
         .def_readonly("has_stage1", &run_summary::has_stage1)
         .def_readonly("stage1_heading_error_rad", &run_summary::stage1_heading_error_rad)
-        .def_readonly("updates", &run_summary::updates);
+        .def_readonly("updates", &run_summary::updates)
+        .def_readonly("self_arrival", &run_summary::self_arrival)
+        .def_readonly("declared", &run_summary::declared)
+        .def_readonly("arrival_time_s", &run_summary::arrival_time_s)
+        .def_readonly("arrival_detect_distance_m",
+                      &run_summary::arrival_detect_distance_m)
+        .def_readonly("false_arrival", &run_summary::false_arrival)
+        .def_readonly("located", &run_summary::located)
+        .def_readonly("location_error_m", &run_summary::location_error_m)
+        .def_readonly("location_major_m", &run_summary::location_major_m)
+        .def_readonly("location_minor_m", &run_summary::location_minor_m)
+        .def_readonly("location_in_ellipse", &run_summary::location_in_ellipse)
+        .def_readonly("total_distance_m", &run_summary::total_distance_m);
 
     py::class_<slot_record>(m, "slot_record")
         .def_readonly("slot", &slot_record::slot)
@@ -66,12 +78,16 @@ void bind_simulation(py::module& m)
         .def_readonly("stage", &slot_record::stage)
         .def_readonly("theta_est_rad", &slot_record::theta_est_rad)
         .def_readonly("cmd_heading_rad", &slot_record::cmd_heading_rad)
-        .def_readonly("update", &slot_record::update);
+        .def_readonly("update", &slot_record::update)
+        .def_readonly("status", &slot_record::status);
 
     py::class_<run_result>(m, "run_result")
         .def_readonly("summary", &run_result::summary)
         .def_readonly("records", &run_result::records)
         .def_readonly("scatterers", &run_result::scatterers)
+        .def_readonly("location", &run_result::location)
+        .def_readonly("location_vehicle_x_m", &run_result::location_vehicle_x_m)
+        .def_readonly("location_vehicle_y_m", &run_result::location_vehicle_y_m)
         .def(
             "columns",
             [](const run_result& r) {
@@ -108,6 +124,7 @@ void bind_simulation(py::module& m)
                 col("cmd_heading_rad",
                     [](const slot_record& s) { return s.cmd_heading_rad; });
                 col("update", [](const slot_record& s) { return s.update; });
+                col("status", [](const slot_record& s) { return s.status; });
                 return d;
             },
             "Per-slot records as a dict of numpy arrays.");

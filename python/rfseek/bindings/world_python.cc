@@ -4,7 +4,7 @@
  */
 
 /* BINDTOOL_HEADER_FILE(world.h) */
-/* BINDTOOL_HEADER_FILE_HASH(c1030c018ba37880d206ca0292b32d34) */
+/* BINDTOOL_HEADER_FILE_HASH(c523593f7e171217c344551b8c243929) */
 
 #include <gr-rfseek/world.h>
 #include <pybind11/complex.h>
@@ -51,6 +51,12 @@ void bind_world(py::module& m)
         .def_property_readonly("noise_power", &world::noise_power)
         .def_property_readonly("arrived", &world::arrived)
         .def_property_readonly("capped", &world::capped)
+        .def_property_readonly("reached", &world::reached)
+        .def_property_readonly("reached_flown_m", &world::reached_flown_m)
+        .def_property_readonly("ended", &world::ended)
+        .def("end_run",
+             &world::end_run,
+             "End the run now (the vehicle declared it is done).")
         .def_property_readonly("finished", &world::finished)
         .def("field", &world::field, "Eq. 2 at the UAV (1/m).")
         .def("paths", &world::paths)

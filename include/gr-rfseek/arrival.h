@@ -1,0 +1,154 @@
+/* -*- c++ -*- */
+/*
+ * Copyright 2026 gr-rfseek authors.
+ * SPDX-License-Identifier: GPL-3.0-or-later
+ *
+ * arrival: what a vehicle without GPS decides by itself near the emitter
+ * (docs/seeker.md, "Arrival and location"):
+ *   overflight_detector  the overflight signature in the measured frequency and power
+ *                        (the Doppler swings from +f_d,max toward -f_d,max while the
+ *                        heading stays put, the power peaks);
+ *   emitter_locator      the emitter's position in the vehicle's dead-reckoned frame
+ *                        (heading + airspeed integration) from the Doppler along a loiter
+ *                        orbit, with wind, altitude and a drifting CFO as nuisances, and
+ *                        its uncertainty ellipse.
+ * Plain C++ (no GNU Radio types); seeker::make wraps any strategy with them when
+ * seeker_config::self_arrival is set.
+ */
+
+#ifndef INCLUDED_RFSEEK_ARRIVAL_H
+#define INCLUDED_RFSEEK_ARRIVAL_H
+
+#include <gr-rfseek/api.h>
+#include <cstdint>
+#include <vector>
+
+namespace gr {
+namespace rfseek {
+
+//! Settings of the overflight detector (seeker_config's arrival_* fields).
+struct RFSEEK_API overflight_config {
+    double max_doppler_hz = 66.7128; //!< f_d,max = v f_c / c (airspeed)
+    double slot_period_s = 0.05;
+    //! Required frequency drop beyond what the heading change explains, x f_d,max.
+    double swing = 0.8;
+    double window_s = 60.0;           //!< the drop must happen within this time
+    double heading_band_rad = 1.0472; //!< heading spread allowed over the drop (60 deg)
+    double power_rise_db = 2.0;       //!< peak power over the drop above its lower end
+    int block_slots = 40;             //!< slots per median block (2 s at 50 ms)
+    int confirm_blocks = 2;           //!< consecutive blocks the signature must hold
+    double min_snr_db = -20.0;        //!< measurements below are not used
+};
+
+/*!
+ * Overflight detector. Measurements are grouped in blocks of block_slots slots; each
+ * block keeps the median frequency and power of its usable measurements and its mean
+ * heading. At the end of every block the detector looks back over window_s for an
+ * earlier block j such that, with every block from j to now inside heading_band_rad,
+ *   F_j - F_now - f_d,max (1 - cos(psi_j - psi_now)) >= swing f_d,max
+ *   max P over [j, now] >= min(P_j, P_now) + power_rise_db
+ * (the second term of the first line is the drop a turn away from the emitter would
+ * explain). Far from the emitter every path has the same Doppler, so the frequency only
+ * falls by turning or by CFO drift; passing the emitter flips the Doppler's sign.
+ */
+class RFSEEK_API overflight_detector
+{
+public:
+    explicit overflight_detector(const overflight_config& cfg = overflight_config());
+
+    //! One slot. heading_rad: the measured heading. Returns true once detected (and
+    //! from then on).
+    bool update(double time_s,
+                double freq_hz,
+                double power_db,
+                double snr_db,
+                bool valid,
+                double heading_rad);
+    bool detected() const { return d_detected; }
+    //! Time of the slot that completed the detection.
+    double detect_time_s() const { return d_detect_time; }
+    //! The largest heading-corrected drop seen in the last block (diagnostics, Hz).
+    double last_drop_hz() const { return d_last_drop; }
+    const overflight_config& config() const { return d_cfg; }
+    void reset();
+
+private:
+    struct block {
+        double time_s;
+        bool usable;
+        double freq_hz;
+        double power_db;
+        double heading_rad; // circular mean
+        double spread_c;    // mean resultant length of the headings (1: constant)
+        double heading_lo;  // min and max heading relative to heading_rad
+        double heading_hi;
+    };
+    void close_block();
+
+    overflight_config d_cfg;
+    std::vector<double> d_f, d_p, d_h;
+    double d_block_start = 0.0;
+    int d_in_block = 0;
+    std::vector<block> d_blocks;
+    int d_hits = 0;
+    bool d_detected = false;
+    double d_detect_time = 0.0;
+    double d_last_drop = 0.0;
+};
+
+//! The emitter located in the vehicle's dead-reckoned frame.
+struct RFSEEK_API emitter_location {
+    bool valid = false;
+    double time_s = 0.0;          //!< time of the fix
+    double east_m = 0.0;          //!< emitter relative to the vehicle at time_s
+    double north_m = 0.0;         //!< (x east, y north, compass frame)
+    double dr_x_m = 0.0;          //!< vehicle in the dead-reckoned frame (origin:
+    double dr_y_m = 0.0;          //!<  where arrival was declared)
+    double major_m = 0.0;         //!< 95 % uncertainty ellipse: semi-major axis
+    double minor_m = 0.0;         //!< semi-minor axis
+    double major_angle_rad = 0.0; //!< direction of the major axis (CCW from east)
+    double wind_east_mps = 0.0;   //!< estimated wind (nuisance)
+    double wind_north_mps = 0.0;
+    double altitude_m = 0.0; //!< estimated height above the emitter (nuisance)
+    double cfo_hz = 0.0;     //!< estimated CFO at time_s
+    double rms_hz = 0.0;     //!< residual RMS of the fit's inliers
+    int used = 0;            //!< measurements in the fit (inliers)
+    double inflation = 1.0;  //!< covariance inflation for correlated residuals
+};
+
+/*!
+ * Locates the emitter from frequency measurements taken along a known dead-reckoned
+ * path. Model (air frame, t_f the last measurement's time):
+ *   f_k = c + d (t_k - t_f) + (v_k + w) . r_k / (lambda sqrt(|r_k|^2 + h^2))
+ *   r_k = p - w (t_k - t_f) - q_k
+ * q_k, v_k the dead-reckoned position and air velocity, p the emitter at t_f, w the
+ * wind, h the height above the emitter. A grid search over p (w = 0) seeds a
+ * Levenberg-Marquardt fit of (p, w, h, c, d) with two rounds of outlier rejection
+ * (residuals beyond 4 robust sigma); the covariance is inflated by (1 + rho) / (1 - rho)
+ * for the residuals' lag-1 correlation rho.
+ */
+class RFSEEK_API emitter_locator
+{
+public:
+    //! wavelength_m: lambda = c / f_c; search_radius_m: grid extent around the path.
+    explicit emitter_locator(double wavelength_m, double search_radius_m = 600.0);
+    void add(double time_s,
+             double x_m,
+             double y_m,
+             double vx_mps,
+             double vy_mps,
+             double freq_hz);
+    std::size_t size() const { return d_t.size(); }
+    void clear();
+    //! Fit everything added; vehicle_x/y: its dead-reckoned position at the fix.
+    emitter_location fit(double vehicle_x_m, double vehicle_y_m) const;
+
+private:
+    double d_lambda, d_search;
+    std::vector<double> d_t, d_x, d_y, d_vx, d_vy, d_f;
+};
+
+} // namespace rfseek
+} // namespace gr
+
+#endif /* INCLUDED_RFSEEK_ARRIVAL_H */

@@ -1,0 +1,178 @@
+/* -*- c++ -*- */
+/*
+ * Copyright 2026 gr-rfseek authors.
+ * SPDX-License-Identifier: GPL-3.0-or-later
+ *
+ * homing_seeker: any strategy, plus what a vehicle without GPS decides by itself near
+ * the emitter (seeker_config::self_arrival, docs/seeker.md "Arrival and location"):
+ *   seeking   the strategy steers; the overflight detector watches its measurements;
+ *   arrived   the overflight was seen: orbit to the left at v / loiter_radius_m, dead-
+ *             reckon the path (measured heading x airspeed) and collect the frequencies;
+ *   located   after locate_orbits orbits (then every quarter orbit) the emitter_locator
+ *             fits the emitter; a fix with a 95 % ellipse under locate_max_axis_m is
+ *             published. The orbit goes on; `done` is set at the first fix, or after
+ *             locate_max_orbits without one.
+ */
+
+#include "strategies.h"
+#include <gr-rfseek/arrival.h>
+#include <gr-rfseek/scenario.h>
+#include <cmath>
+#include <deque>
+
+namespace gr {
+namespace rfseek {
+
+namespace {
+
+double wrap(double a)
+{
+    a = std::remainder(a, 2.0 * M_PI);
+    return a <= -M_PI ? a + 2.0 * M_PI : a;
+}
+
+overflight_config detector_config(const seeker_config& c)
+{
+    overflight_config o;
+    o.max_doppler_hz = c.max_doppler_hz();
+    o.slot_period_s = c.slot_period_s;
+    o.swing = c.arrival_swing;
+    o.window_s = c.arrival_window_s;
+    o.heading_band_rad = c.arrival_heading_band_rad;
+    o.power_rise_db = c.arrival_power_rise_db;
+    o.block_slots = c.arrival_block_slots;
+    o.confirm_blocks = c.arrival_confirm_blocks;
+    o.min_snr_db = c.min_snr_db;
+    return o;
+}
+
+class homing_seeker : public seeker
+{
+public:
+    homing_seeker(const seeker_config& cfg, std::unique_ptr<seeker> strategy)
+        : d_cfg(cfg),
+          d_inner(std::move(strategy)),
+          d_detector(detector_config(cfg)),
+          d_locator(SPEED_OF_LIGHT / cfg.carrier_hz),
+          d_next_fit_orbits(cfg.locate_orbits)
+    {
+    }
+
+    command update(const measurement& m) override
+    {
+        if (d_status == 0) {
+            command c = d_inner->update(m);
+            d_heading_cmd = c.heading_rad;
+            const double h = m.has_heading ? m.heading_rad : c.heading_rad;
+            if (d_detector.update(
+                    m.time_s, m.freq_hz, m.power_db, m.snr_db, m.valid, h)) {
+                d_status = 1;
+                d_loiter_start = m.time_s;
+                d_last_heading = h;
+                d_heading_cmd = h; // the orbit starts from the heading flown
+                c.heading_rad = wrap(d_heading_cmd + turn_per_slot());
+                d_heading_cmd = c.heading_rad;
+                c.stage = 3;
+            }
+            c.status = d_status;
+            return c;
+        }
+        return loiter(m);
+    }
+
+    const seeker_config& config() const override { return d_cfg; }
+    int stage() const override { return d_status == 0 ? d_inner->stage() : 3; }
+    double theta_est_rad() const override
+    {
+        if (d_location.valid)
+            return std::atan2(d_location.north_m, d_location.east_m);
+        return d_inner->theta_est_rad();
+    }
+    std::uint64_t updates() const override { return d_inner->updates(); }
+
+private:
+    double turn_per_slot() const
+    {
+        return d_cfg.speed_mps / d_cfg.loiter_radius_m * d_cfg.slot_period_s;
+    }
+    double orbit_s() const
+    {
+        return 2.0 * M_PI * d_cfg.loiter_radius_m / d_cfg.speed_mps;
+    }
+
+    command loiter(const measurement& m)
+    {
+        command c;
+        c.slot = m.slot;
+        c.stage = 3;
+        // Dead reckoning: the leg since the previous slot at the mean of its two
+        // measured headings, at the airspeed.
+        const double h = m.has_heading ? m.heading_rad : d_heading_cmd;
+        const double mean = d_last_heading + 0.5 * wrap(h - d_last_heading);
+        const double step = d_cfg.speed_mps * d_cfg.slot_period_s;
+        d_x += step * std::cos(mean);
+        d_y += step * std::sin(mean);
+        d_last_heading = h;
+        const bool usable =
+            m.valid && m.snr_db >= d_cfg.min_snr_db && std::isfinite(m.freq_hz);
+        if (usable)
+            d_locator.add(m.time_s,
+                          d_x,
+                          d_y,
+                          d_cfg.speed_mps * std::cos(h),
+                          d_cfg.speed_mps * std::sin(h),
+                          m.freq_hz);
+        c.filtered_freq_hz = m.freq_hz;
+        c.accepted = usable;
+
+        const double loitered = m.time_s - d_loiter_start;
+        if (loitered >= d_next_fit_orbits * orbit_s()) {
+            d_next_fit_orbits += 0.25;
+            const emitter_location l = d_locator.fit(d_x, d_y);
+            if (l.valid && l.major_m <= d_cfg.locate_max_axis_m) {
+                d_location = l;
+                d_status = 2;
+                d_done = true;
+                c.update = true;
+            }
+        }
+        if (loitered >= d_cfg.locate_max_orbits * orbit_s())
+            d_done = true;
+        d_heading_cmd = wrap(d_heading_cmd + turn_per_slot());
+        c.heading_rad = d_heading_cmd;
+        c.theta_est_rad = theta_est_rad();
+        c.status = d_status;
+        c.done = d_done;
+        c.location = d_location;
+        if (d_location.valid) { // the emitter relative to the vehicle now
+            c.location.east_m = d_location.east_m + d_location.dr_x_m - d_x;
+            c.location.north_m = d_location.north_m + d_location.dr_y_m - d_y;
+            c.location.dr_x_m = d_x;
+            c.location.dr_y_m = d_y;
+        }
+        return c;
+    }
+
+    seeker_config d_cfg;
+    std::unique_ptr<seeker> d_inner;
+    overflight_detector d_detector;
+    emitter_locator d_locator;
+    int d_status = 0;
+    bool d_done = false;
+    double d_heading_cmd = 0.0, d_last_heading = 0.0, d_loiter_start = 0.0;
+    double d_x = 0.0, d_y = 0.0; // dead-reckoned, origin where arrival was declared
+    emitter_location d_location;
+    double d_next_fit_orbits;
+};
+
+} // namespace
+
+std::unique_ptr<seeker> make_homing_seeker(const seeker_config& cfg,
+                                           std::unique_ptr<seeker> strategy)
+{
+    auto s = std::make_unique<homing_seeker>(cfg, std::move(strategy));
+    return s;
+}
+
+} // namespace rfseek
+} // namespace gr

@@ -310,28 +310,38 @@ emitter_location emitter_locator::fit(double vehicle_x_m, double vehicle_y_m) co
     }
     cx /= n;
     cy /= n;
-    pr.step = std::max<std::size_t>(1, n / 200);
+    pr.step = std::max<std::size_t>(1, n / 120);
     std::vector<double> r;
     params best{ cx, cy, 0.0, 0.0, 0.0 };
     double best_cost = std::numeric_limits<double>::infinity();
-    const double spacing = 20.0;
+    const double spacing = 30.0;
     const int m = static_cast<int>(std::ceil(d_search / spacing));
     const double tau2 = 100.0; // (10 Hz)^2: a robust cost for the grid
-    for (double h : { 10.0, 100.0 })
-        for (int i = -m; i <= m; ++i)
-            for (int j = -m; j <= m; ++j) {
-                if (i * i + j * j > m * m)
-                    continue;
-                const params p{ cx + i * spacing, cy + j * spacing, 0.0, 0.0, h };
-                pr.residuals(p, r);
-                double cost = 0.0;
-                for (std::size_t k = 0; k < n; k += pr.step)
-                    cost += std::min(r[k] * r[k], tau2);
-                if (cost < best_cost) {
-                    best_cost = cost;
-                    best = p;
+    // Wind candidates: calm, and 3 and 6 m/s from 8 directions (a strong wind moves the
+    // emitter by hundreds of metres in the air frame over an orbit: the fit must start
+    // near it).
+    std::vector<std::pair<double, double>> winds{ { 0.0, 0.0 } };
+    for (double ws : { 3.0, 6.0 })
+        for (int q = 0; q < 8; ++q)
+            winds.emplace_back(ws * std::cos(q * M_PI / 4), ws * std::sin(q * M_PI / 4));
+    for (const auto& wv : winds)
+        for (double h : { 10.0, 100.0 })
+            for (int i = -m; i <= m; ++i)
+                for (int j = -m; j <= m; ++j) {
+                    if (i * i + j * j > m * m)
+                        continue;
+                    const params p{
+                        cx + i * spacing, cy + j * spacing, wv.first, wv.second, h
+                    };
+                    pr.residuals(p, r);
+                    double cost = 0.0;
+                    for (std::size_t k = 0; k < n; k += pr.step)
+                        cost += std::min(r[k] * r[k], tau2);
+                    if (cost < best_cost) {
+                        best_cost = cost;
+                        best = p;
+                    }
                 }
-            }
     pr.step = 1;
 
     // Levenberg-Marquardt on the projected residuals, two rounds of outlier rejection.
@@ -429,8 +439,29 @@ emitter_location emitter_locator::fit(double vehicle_x_m, double vehicle_y_m) co
     }
     if (used < 50)
         return out;
+    // Correlated residuals (multipath along the path, gusts) carry less information than
+    // their number says: inflate by the larger of the AR(1) factor and the variance
+    // ratio of 1 s block means (B var(mean) / var, 1 for white residuals).
     const double rho = std::clamp(r0 > 0.0 ? r1 / r0 : 0.0, 0.0, 0.98);
-    const double inflation = (1.0 + rho) / (1.0 - rho);
+    double inflation = (1.0 + rho) / (1.0 - rho);
+    {
+        const std::size_t B = 20;
+        double sum = 0.0, bm2 = 0.0;
+        std::size_t in_block = 0, blocks = 0;
+        for (std::size_t k = 0; k < n; ++k) {
+            if (!pr.use[k])
+                continue;
+            sum += r[k];
+            if (++in_block == B) {
+                bm2 += (sum / B) * (sum / B);
+                sum = 0.0;
+                in_block = 0;
+                ++blocks;
+            }
+        }
+        if (blocks >= 5 && r0 > 0.0)
+            inflation = std::max(inflation, B * (bm2 / blocks) / (r0 / used));
+    }
     const double s2 = cost / std::max(used - 7, 1);
     // Invert J^T J column by column (a tiny ridge keeps h = 0 invertible).
     double scale = 0.0;

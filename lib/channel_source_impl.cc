@@ -148,6 +148,17 @@ void channel_source_impl::handle_cmd(const pmt::pmt_t& msg)
     }
     d_cmd_heading = heading;
     d_have_cmd = true;
+    // self_arrival: the controller's `done` ends the run at this slot (located, or
+    // given up), as rfseek::simulation does.
+    if (d_world.config().self_arrival) {
+        pmt::pmt_t done = pmt::PMT_NIL;
+        try {
+            done = pmt::dict_ref(msg, pmt::mp("done"), pmt::PMT_NIL);
+        } catch (const std::exception&) {
+        }
+        if (pmt::is_bool(done) && pmt::to_bool(done))
+            d_end_requested = true;
+    }
 }
 
 void channel_source_impl::publish_state()
@@ -172,6 +183,10 @@ void channel_source_impl::publish_state()
     d = pmt::dict_add(d, pmt::mp("power_db"), pmt::from_double(10.0 * std::log10(p)));
     d = pmt::dict_add(d, pmt::mp("arrived"), pmt::from_bool(w.arrived()));
     d = pmt::dict_add(d, pmt::mp("capped"), pmt::from_bool(w.capped()));
+    if (w.config().self_arrival) {
+        d = pmt::dict_add(d, pmt::mp("reached"), pmt::from_bool(w.reached()));
+        d = pmt::dict_add(d, pmt::mp("ended"), pmt::from_bool(w.ended()));
+    }
     if (w.slot() == 0) {
         // Scene geometry once, for plots: scatterer positions x0, y0, x1, y1, ...
         std::vector<double> xy;
@@ -227,6 +242,17 @@ int channel_source_impl::work(int noutput_items,
             if (d_lockstep && !d_have_cmd)
                 break; // parked until the cmd for this slot arrives
             d_have_cmd = false;
+            if (d_end_requested) {
+                d_world.end_run();
+                publish_state();
+                d_logger->info("the vehicle declared its mission done at slot {}, {:.1f} "
+                               "m from the emitter ({} d_v)",
+                               d_world.slot(),
+                               d_world.distance_m(),
+                               d_world.reached() ? "came within" : "never came within");
+                d_done = true;
+                break;
+            }
             d_world.advance(d_cmd_heading);
             if (d_world.finished()) {
                 publish_state();

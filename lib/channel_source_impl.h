@@ -69,6 +69,7 @@ private:
     bool d_next_ready = false; // advanced to a slot not yet begun
     bool d_done = false;
     bool d_have_cmd = false;
+    bool d_end_requested = false; // self_arrival: the controller declared it done
     double d_cmd_heading = 0.0;
     std::uint64_t d_malformed = 0;
     std::uint64_t d_stale = 0;

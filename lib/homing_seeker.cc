@@ -17,6 +17,7 @@
 #include "strategies.h"
 #include <gr-rfseek/arrival.h>
 #include <gr-rfseek/scenario.h>
+#include <algorithm>
 #include <cmath>
 #include <deque>
 
@@ -54,7 +55,8 @@ public:
           d_inner(std::move(strategy)),
           d_detector(detector_config(cfg)),
           d_locator(SPEED_OF_LIGHT / cfg.carrier_hz),
-          d_next_fit_orbits(cfg.locate_orbits)
+          d_next_fit_s(cfg.locate_orbits * 2.0 * M_PI * cfg.loiter_radius_m /
+                       cfg.speed_mps)
     {
     }
 
@@ -126,19 +128,29 @@ private:
         c.accepted = usable;
 
         const double loitered = m.time_s - d_loiter_start;
-        if (loitered >= d_next_fit_orbits * orbit_s()) {
-            d_next_fit_orbits += 0.25;
+        if (loitered >= d_next_fit_s) {
             const emitter_location l = d_locator.fit(d_x, d_y);
-            if (l.valid && l.major_m <= d_cfg.locate_max_axis_m) {
+            if (l.valid && l.major_m <= d_cfg.locate_max_axis_m && d_centred) {
                 d_location = l;
                 d_status = 2;
                 d_done = true;
                 c.update = true;
+            } else if (l.valid) {
+                // Orbit the estimate (in the air frame it drifts with minus the wind)
+                // for another orbit, then fit again with everything.
+                d_target_x = d_x + l.east_m;
+                d_target_y = d_y + l.north_m;
+                d_target_t = m.time_s;
+                d_wind_x = l.wind_east_mps;
+                d_wind_y = l.wind_north_mps;
+                d_centred = true;
             }
+            d_next_fit_s = loitered + (l.valid ? d_cfg.locate_orbits : 0.25) * orbit_s();
         }
         if (loitered >= d_cfg.locate_max_orbits * orbit_s())
             d_done = true;
-        d_heading_cmd = wrap(d_heading_cmd + turn_per_slot());
+        d_heading_cmd =
+            d_centred ? orbit_heading(m.time_s) : wrap(d_heading_cmd + turn_per_slot());
         c.heading_rad = d_heading_cmd;
         c.theta_est_rad = theta_est_rad();
         c.status = d_status;
@@ -153,6 +165,38 @@ private:
         return c;
     }
 
+    /*
+     * The heading that keeps the ground track on a circle of loiter_radius_m around the
+     * estimated emitter (counter-clockwise): a vector field (tangent, plus a radial pull
+     * of 2 (r - R) / R) for the ground course, turned into an air heading through the
+     * wind triangle with the estimated wind. Air frame: the emitter moves with -wind.
+     */
+    double orbit_heading(double t) const
+    {
+        const double R = d_cfg.loiter_radius_m, v = d_cfg.speed_mps;
+        const double ex = d_target_x - d_wind_x * (t - d_target_t);
+        const double ey = d_target_y - d_wind_y * (t - d_target_t);
+        double ux = d_x - ex, uy = d_y - ey;
+        const double r = std::hypot(ux, uy);
+        if (r < 1e-6)
+            return d_heading_cmd;
+        ux /= r;
+        uy /= r;
+        const double pull = std::clamp(2.0 * (r - R) / R, -2.0, 2.0);
+        double cx = -uy - pull * ux, cy = ux - pull * uy; // tangent (CCW) + pull
+        const double cn = std::hypot(cx, cy);
+        cx /= cn;
+        cy /= cn;
+        // Ground speed s along the course: |s c - w| = v.
+        const double cw = cx * d_wind_x + cy * d_wind_y;
+        const double w2 = d_wind_x * d_wind_x + d_wind_y * d_wind_y;
+        const double disc = cw * cw - w2 + v * v;
+        if (disc <= 0.0) // wind stronger than the airspeed: head into it
+            return std::atan2(-d_wind_y, -d_wind_x);
+        const double gs = cw + std::sqrt(disc);
+        return std::atan2(gs * cy - d_wind_y, gs * cx - d_wind_x);
+    }
+
     seeker_config d_cfg;
     std::unique_ptr<seeker> d_inner;
     overflight_detector d_detector;
@@ -162,7 +206,11 @@ private:
     double d_heading_cmd = 0.0, d_last_heading = 0.0, d_loiter_start = 0.0;
     double d_x = 0.0, d_y = 0.0; // dead-reckoned, origin where arrival was declared
     emitter_location d_location;
-    double d_next_fit_orbits;
+    double d_next_fit_s;
+    bool d_centred = false; // orbiting an estimate (after the first fit)
+    double d_target_x = 0.0, d_target_y = 0.0,
+           d_target_t = 0.0;               // the estimate, air frame
+    double d_wind_x = 0.0, d_wind_y = 0.0; // estimated wind
 };
 
 } // namespace

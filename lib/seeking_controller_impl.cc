@@ -9,6 +9,7 @@
 
 #include "seeking_controller_impl.h"
 #include <gnuradio/io_signature.h>
+#include <algorithm>
 #include <cmath>
 
 namespace gr {
@@ -42,6 +43,7 @@ seeking_controller_impl::seeking_controller_impl(const seeker_config& cfg)
       d_port_nav(pmt::mp("nav")),
       d_port_cmd(pmt::mp("cmd")),
       d_port_telemetry(pmt::mp("telemetry")),
+      d_port_status(pmt::mp("status")),
       d_key_slot(pmt::mp("slot")),
       d_key_heading(pmt::mp("heading")),
       d_key_freq(pmt::mp("freq_hz")),
@@ -55,6 +57,7 @@ seeking_controller_impl::seeking_controller_impl(const seeker_config& cfg)
     message_port_register_in(d_port_nav);
     message_port_register_out(d_port_cmd);
     message_port_register_out(d_port_telemetry);
+    message_port_register_out(d_port_status);
     set_msg_handler(d_port_meas, [this](const pmt::pmt_t& m) { handle_meas(m); });
     set_msg_handler(d_port_nav, [this](const pmt::pmt_t& m) { handle_nav(m); });
 }
@@ -161,7 +164,12 @@ void seeking_controller_impl::handle_meas(const pmt::pmt_t& msg)
     cmd = pmt::dict_add(cmd, d_key_slot, pmt::from_uint64(c.slot));
     cmd = pmt::dict_add(cmd, d_key_heading, pmt::from_double(c.heading_rad));
     cmd = pmt::dict_add(cmd, d_key_stage, pmt::from_long(c.stage));
+    if (d_seeker->config().self_arrival) {
+        cmd = pmt::dict_add(cmd, pmt::mp("status"), pmt::from_long(c.status));
+        cmd = pmt::dict_add(cmd, pmt::mp("done"), pmt::from_bool(c.done));
+    }
     message_port_pub(d_port_cmd, cmd);
+    publish_status(c, m.time_s);
 
     pmt::pmt_t t = pmt::make_dict();
     t = pmt::dict_add(t, d_key_slot, pmt::from_uint64(c.slot));
@@ -176,7 +184,48 @@ void seeking_controller_impl::handle_meas(const pmt::pmt_t& msg)
         t, pmt::mp("filtered_freq_hz"), pmt::from_double(c.filtered_freq_hz));
     t = pmt::dict_add(t, d_key_freq, pmt::from_double(m.valid ? m.freq_hz : 0.0));
     t = pmt::dict_add(t, d_key_valid, pmt::from_bool(m.valid));
+    t = pmt::dict_add(t, pmt::mp("status"), pmt::from_long(c.status));
     message_port_pub(d_port_telemetry, t);
+}
+
+void seeking_controller_impl::publish_status(const command& c, double time_s)
+{
+    // On every change of status, and on every new fix while located.
+    const bool new_fix =
+        c.status == 2 && c.location.valid && c.location.time_s != d_fix_time;
+    if (c.status == d_status && !new_fix)
+        return;
+    d_status = c.status;
+    if (new_fix)
+        d_location = c.location;
+    static const char* names[] = { "seeking", "arrived", "located" };
+    pmt::pmt_t s = pmt::make_dict();
+    s = pmt::dict_add(s, pmt::mp("status"), pmt::mp(names[std::clamp(c.status, 0, 2)]));
+    s = pmt::dict_add(s, d_key_slot, pmt::from_uint64(c.slot));
+    s = pmt::dict_add(s, d_key_time, pmt::from_double(time_s));
+    if (new_fix) {
+        d_fix_time = c.location.time_s;
+        const emitter_location& l = c.location;
+        auto add = [&s](const char* k, double v) {
+            s = pmt::dict_add(
+                s, pmt::mp(k), pmt::from_double(std::isfinite(v) ? v : 0.0));
+        };
+        add("east_m", l.east_m);
+        add("north_m", l.north_m);
+        add("range_m", std::hypot(l.east_m, l.north_m));
+        add("bearing_rad", std::atan2(l.north_m, l.east_m));
+        add("dr_x_m", l.dr_x_m);
+        add("dr_y_m", l.dr_y_m);
+        add("major_m", l.major_m);
+        add("minor_m", l.minor_m);
+        add("major_angle_rad", l.major_angle_rad);
+        add("wind_east_mps", l.wind_east_mps);
+        add("wind_north_mps", l.wind_north_mps);
+        add("altitude_m", l.altitude_m);
+        add("fix_time", l.time_s);
+        add("rms_hz", l.rms_hz);
+    }
+    message_port_pub(d_port_status, s);
 }
 
 seeker_config seeking_controller_impl::config() const
@@ -219,6 +268,24 @@ std::uint64_t seeking_controller_impl::malformed_count() const
 {
     gr::thread::scoped_lock lock(setlock());
     return d_malformed;
+}
+
+} // namespace rfseek
+} // namespace gr
+
+namespace gr {
+namespace rfseek {
+
+int seeking_controller_impl::status() const
+{
+    gr::thread::scoped_lock lock(setlock());
+    return std::max(d_status, 0);
+}
+
+emitter_location seeking_controller_impl::location() const
+{
+    gr::thread::scoped_lock lock(setlock());
+    return d_location;
 }
 
 } // namespace rfseek

@@ -26,6 +26,8 @@ public:
     std::uint64_t meas_count() const override;
     std::uint64_t invalid_count() const override;
     std::uint64_t malformed_count() const override;
+    int status() const override;
+    emitter_location location() const override;
 
 private:
     gr::thread::mutex& setlock() const
@@ -42,7 +44,12 @@ private:
     std::uint64_t d_meas = 0, d_invalid = 0, d_malformed = 0;
     std::set<std::string> d_logged;
 
-    const pmt::pmt_t d_port_meas, d_port_nav, d_port_cmd, d_port_telemetry;
+    void publish_status(const command& c, double time_s);
+    int d_status = -1;        // last published status (-1: none yet)
+    emitter_location d_location;
+    double d_fix_time = -1.0; // time of the last published fix
+
+    const pmt::pmt_t d_port_meas, d_port_nav, d_port_cmd, d_port_telemetry, d_port_status;
     const pmt::pmt_t d_key_slot, d_key_heading, d_key_freq, d_key_valid, d_key_snr,
         d_key_power, d_key_time, d_key_stage;
 };

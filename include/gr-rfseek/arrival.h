@@ -124,8 +124,9 @@ struct RFSEEK_API emitter_location {
  * q_k, v_k the dead-reckoned position and air velocity, p the emitter at t_f, w the
  * wind, h the height above the emitter. A grid search over p (w = 0) seeds a
  * Levenberg-Marquardt fit of (p, w, h, c, d) with two rounds of outlier rejection
- * (residuals beyond 4 robust sigma); the covariance is inflated by (1 + rho) / (1 - rho)
- * for the residuals' lag-1 correlation rho.
+ * (residuals beyond 4 robust sigma); the covariance is inflated for correlated
+ * residuals: the larger of (1 + rho) / (1 - rho), rho their lag-1 correlation, and
+ * B var(mean of B) / var for blocks of B = 20 measurements.
  */
 class RFSEEK_API emitter_locator
 {

@@ -31,6 +31,16 @@ namespace rfseek {
  * measurements are ignored by the strategy (a cmd is still sent so a lockstep source
  * keeps going); after a run of them the course is held. Malformed messages are logged
  * once per kind, counted and dropped.
+ *
+ * With cfg.self_arrival (docs/seeker.md, "Arrival and location") the strategy is wrapped
+ * by the overflight detector, the loiter orbit and the emitter locator; the cmd then also
+ * carries {status (0 seeking, 1 arrived, 2 located), done} (a channel_source whose
+ * scenario has self_arrival ends the run at `done`), telemetry carries status, and the
+ * "status" port publishes {status: 'seeking' | 'arrived' | 'located', slot, time} at
+ * every change, plus for every new fix {east_m, north_m, range_m, bearing_rad (emitter
+ * relative to the vehicle, compass frame), dr_x_m, dr_y_m, major_m, minor_m,
+ * major_angle_rad (95 % ellipse), wind_east_mps, wind_north_mps, altitude_m, fix_time,
+ * rms_hz}. Without self_arrival "status" says 'seeking' once.
  */
 class RFSEEK_API seeking_controller : virtual public gr::block
 {
@@ -47,6 +57,10 @@ public:
     virtual std::uint64_t meas_count() const = 0;
     virtual std::uint64_t invalid_count() const = 0;
     virtual std::uint64_t malformed_count() const = 0;
+    //! 0 seeking, 1 arrived (loitering), 2 located (always 0 without self_arrival).
+    virtual int status() const = 0;
+    //! The latest fix (valid once located).
+    virtual emitter_location location() const = 0;
 };
 
 } // namespace rfseek

@@ -4,7 +4,7 @@
  */
 
 /* BINDTOOL_HEADER_FILE(seeker.h) */
-/* BINDTOOL_HEADER_FILE_HASH(2bc0760e86867b0f53ad1eed4e76b2cc) */
+/* BINDTOOL_HEADER_FILE_HASH(c6d8e6bfb27bba7ca54954de66a8f8b9) */
 
 #include "kwargs.h"
 #include <gr-rfseek/seeker.h>

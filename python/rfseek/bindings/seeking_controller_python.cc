@@ -4,7 +4,7 @@
  */
 
 /* BINDTOOL_HEADER_FILE(seeking_controller.h) */
-/* BINDTOOL_HEADER_FILE_HASH(64af921b993773b1bc10ac1ca790e9eb) */
+/* BINDTOOL_HEADER_FILE_HASH(748961a8ffcb5a5d72a26bae875fbb18) */
 
 #include <gr-rfseek/seeking_controller.h>
 #include <pybind11/pybind11.h>
@@ -29,5 +29,7 @@ void bind_seeking_controller(py::module& m)
         .def("updates", &seeking_controller::updates)
         .def("meas_count", &seeking_controller::meas_count)
         .def("invalid_count", &seeking_controller::invalid_count)
-        .def("malformed_count", &seeking_controller::malformed_count);
+        .def("malformed_count", &seeking_controller::malformed_count)
+        .def("status", &seeking_controller::status, "0 seeking, 1 arrived, 2 located")
+        .def("location", &seeking_controller::location, "the latest fix");
 }

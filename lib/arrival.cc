@@ -81,6 +81,8 @@ overflight_detector::overflight_detector(const overflight_config& cfg) : d_cfg(c
         bad("window_s", "> 0");
     if (!(cfg.heading_band_rad > 0.0 && cfg.heading_band_rad <= M_PI))
         bad("heading_band_rad", "in (0, pi]");
+    if (!(cfg.drift_s > 0.0) || !std::isfinite(cfg.drift_s))
+        bad("drift_s", "> 0");
     if (!(cfg.power_rise_db >= 0.0) || !std::isfinite(cfg.power_rise_db))
         bad("power_rise_db", ">= 0");
     if (cfg.block_slots < 1 || cfg.block_slots > 100000)
@@ -131,6 +133,67 @@ bool overflight_detector::update(double time_s,
     return d_detected;
 }
 
+/*
+ * The CFO drift up to block b: least squares over the usable blocks of the last drift_s
+ * (b included) of F = c + d t + p cos(psi) + q sin(psi), the far-field model (every path
+ * from one bearing beta: p = f_d,max cos beta, q = f_d,max sin beta). Turns make p and q
+ * identifiable; in steady flight they are collinear with c, and a small ridge keeps the
+ * system solvable (the drift is then the plain trend). NaN with fewer than 10 blocks.
+ */
+double overflight_detector::drift_before(const block& b) const
+{
+    std::vector<const block*> w{ &b };
+    for (std::size_t i = d_blocks.size(); i-- > 0;) {
+        if (b.time_s - d_blocks[i].time_s > d_cfg.drift_s)
+            break;
+        w.push_back(&d_blocks[i]);
+    }
+    auto row = [&](const block* q, double r[4]) {
+        r[0] = 1.0;
+        r[1] = (q->time_s - b.time_s) / 60.0;
+        r[2] = std::cos(q->heading_rad);
+        r[3] = std::sin(q->heading_rad);
+    };
+    std::array<std::array<double, 4>, 4> a{};
+    std::array<double, 4> y{};
+    int used = 0;
+    for (const block* q : w) {
+        if (!q->usable)
+            continue;
+        double r[4];
+        row(q, r);
+        for (int i = 0; i < 4; ++i) {
+            y[i] += r[i] * q->freq_hz;
+            for (int k = 0; k < 4; ++k)
+                a[i][k] += r[i] * r[k];
+        }
+        ++used;
+    }
+    // At least half of drift_s of usable blocks: a short history (the start of a
+    // flight, its first manoeuvres) gives no trustworthy drift.
+    const double block_s = d_cfg.block_slots * d_cfg.slot_period_s;
+    if (used < std::max(10.0, 0.5 * d_cfg.drift_s / block_s))
+        return NAN;
+    for (int i = 2; i < 4; ++i)
+        a[i][i] += 1e-3 * used;
+    std::array<double, 4> x = y, e1{ 0.0, 1.0, 0.0, 0.0 };
+    if (!solve(a, x) || !solve(a, e1))
+        return NAN;
+    double ss = 0.0;
+    for (const block* q : w) {
+        if (!q->usable)
+            continue;
+        double r[4];
+        row(q, r);
+        const double e = q->freq_hz - (x[0] + x[1] * r[1] + x[2] * r[2] + x[3] * r[3]);
+        ss += e * e;
+    }
+    // Shrunk toward zero by two standard errors: an uncertain drift corrects nothing.
+    const double se = std::sqrt(std::max(ss / std::max(used - 4, 1), 0.0) * e1[1]);
+    const double d = x[1], mag = std::max(std::abs(d) - 2.0 * se, 0.0);
+    return (d < 0.0 ? -mag : mag) / 60.0;
+}
+
 void overflight_detector::close_block()
 {
     block b{};
@@ -156,9 +219,11 @@ void overflight_detector::close_block()
     d_p.clear();
     d_h.clear();
     d_in_block = 0;
+    b.drift = b.usable ? drift_before(b) : NAN;
     d_blocks.push_back(b);
     // Keep the window (and one block more).
-    const double keep = d_cfg.window_s + d_cfg.block_slots * d_cfg.slot_period_s;
+    const double keep =
+        d_cfg.window_s + d_cfg.drift_s + d_cfg.block_slots * d_cfg.slot_period_s;
     std::size_t old = 0;
     while (old < d_blocks.size() && b.time_s - d_blocks[old].time_s > keep)
         ++old;
@@ -186,7 +251,11 @@ void overflight_detector::close_block()
         pmax = std::max(pmax, j.power_db);
         if (pmax < std::min(j.power_db, b.power_db) + d_cfg.power_rise_db)
             continue;
-        best = std::max(best, j.freq_hz - b.freq_hz - a * (1.0 - std::cos(dpsi)));
+        if (std::isnan(j.drift))
+            continue; // the CFO drift before j is not known yet
+        best = std::max(best,
+                        j.freq_hz - b.freq_hz - a * (1.0 - std::cos(dpsi)) +
+                            j.drift * (b.time_s - j.time_s));
     }
     d_last_drop = std::isfinite(best) ? best : 0.0;
     d_hits = best >= d_cfg.swing * a ? d_hits + 1 : 0;

@@ -32,24 +32,31 @@ struct RFSEEK_API overflight_config {
     double slot_period_s = 0.05;
     //! Required frequency drop beyond what the heading change explains, x f_d,max.
     double swing = 0.8;
-    double window_s = 60.0;           //!< the drop must happen within this time
+    double window_s = 90.0;           //!< the drop must happen within this time
     double heading_band_rad = 1.0472; //!< heading spread allowed over the drop (60 deg)
-    double power_rise_db = 2.0;       //!< peak power over the drop above its lower end
-    int block_slots = 40;             //!< slots per median block (2 s at 50 ms)
-    int confirm_blocks = 2;           //!< consecutive blocks the signature must hold
-    double min_snr_db = -20.0;        //!< measurements below are not used
+    //! The CFO drift is fitted over this much flight before each block (any headings).
+    double drift_s = 120.0;
+    double power_rise_db = 2.0; //!< peak power over the drop above its lower end
+    int block_slots = 40;       //!< slots per median block (2 s at 50 ms)
+    int confirm_blocks = 2;     //!< consecutive blocks the signature must hold
+    double min_snr_db = -20.0;  //!< measurements below are not used
 };
 
 /*!
  * Overflight detector. Measurements are grouped in blocks of block_slots slots; each
- * block keeps the median frequency and power of its usable measurements and its mean
- * heading. At the end of every block the detector looks back over window_s for an
+ * block keeps the median frequency and power of its usable measurements, its mean
+ * heading, and the CFO drift d fitted up to it (F = c + d t + p cos psi + q sin psi
+ * over the last drift_s, any headings: the far-field model, every path from one
+ * bearing; at least drift_s / 2 of usable blocks, shrunk toward 0 by two standard
+ * errors). At the end of every block the detector looks back over window_s for an
  * earlier block j such that, with every block from j to now inside heading_band_rad,
- *   F_j - F_now - f_d,max (1 - cos(psi_j - psi_now)) >= swing f_d,max
+ *   F_j - F_now - f_d,max (1 - cos(psi_j - psi_now)) + d_j (t_now - t_j)
+ *       >= swing f_d,max
  *   max P over [j, now] >= min(P_j, P_now) + power_rise_db
- * (the second term of the first line is the drop a turn away from the emitter would
- * explain). Far from the emitter every path has the same Doppler, so the frequency only
- * falls by turning or by CFO drift; passing the emitter flips the Doppler's sign.
+ * on confirm_blocks consecutive blocks (the second term of the first line is the drop a
+ * turn away from the emitter would explain, the third the CFO's own change). Far from
+ * the emitter every path has the same Doppler, so the frequency only falls by turning
+ * or by CFO drift; passing the emitter flips the Doppler's sign.
  */
 class RFSEEK_API overflight_detector
 {
@@ -82,8 +89,10 @@ private:
         double spread_c;    // mean resultant length of the headings (1: constant)
         double heading_lo;  // min and max heading relative to heading_rad
         double heading_hi;
+        double drift; // CFO drift fitted up to this block (Hz/s; NaN: unknown)
     };
     void close_block();
+    double drift_before(const block& b) const;
 
     overflight_config d_cfg;
     std::vector<double> d_f, d_p, d_h;

@@ -78,7 +78,7 @@ struct RFSEEK_API seeker_config {
     //! strategy only (the paper's runs end at the simulator's d_v).
     bool self_arrival = false;
     double arrival_swing = 0.8;     //!< frequency drop beyond turns, x f_d,max
-    double arrival_window_s = 60.0; //!< the drop must happen within this time
+    double arrival_window_s = 90.0; //!< the drop must happen within this time
     double arrival_heading_band_rad = 1.0471975511965976; //!< 60 deg spread allowed
     double arrival_power_rise_db = 2.0; //!< power peak over the drop's lower end
     int arrival_block_slots = 40;       //!< slots per median block

@@ -5,6 +5,7 @@
 """Ready-made flowgraphs: the closed-loop seek of channel_source -> doppler_estimator ->
 seeking_controller -> channel_source, with the truth and telemetry collected."""
 
+import math
 import sys
 
 import pmt
@@ -15,12 +16,12 @@ from .rfseek_python import (channel_source, doppler_estimator, estimator_config,
 
 
 class collector(gr.basic_block):
-    """Keeps every message of its inputs 'state', 'meas' and 'telemetry' as Python dicts;
-    optionally prints a progress line every `every` slots."""
+    """Keeps every message of its inputs 'state', 'meas', 'telemetry' and 'status' as
+    Python dicts; optionally prints a progress line every `every` slots."""
 
     def __init__(self, progress_every=0, stream=sys.stderr):
         gr.basic_block.__init__(self, name="rfseek_collector", in_sig=None, out_sig=None)
-        self.states, self.meas, self.telemetry = [], [], []
+        self.states, self.meas, self.telemetry, self.status = [], [], [], []
         self._every = progress_every
         self._stream = stream
         # GNU Radio's Python gateway finds handlers by method name: one method per port.
@@ -30,6 +31,19 @@ class collector(gr.basic_block):
         self.set_msg_handler(pmt.intern("meas"), self.on_meas)
         self.message_port_register_in(pmt.intern("telemetry"))
         self.set_msg_handler(pmt.intern("telemetry"), self.on_telemetry)
+        self.message_port_register_in(pmt.intern("status"))
+        self.set_msg_handler(pmt.intern("status"), self.on_status)
+
+    def on_status(self, msg):
+        d = pmt.to_python(msg)
+        self.status.append(d)
+        if self._every and d["status"] != "seeking":
+            self._stream.write("\n  %s at slot %d%s\n" % (
+                d["status"].upper(), d["slot"],
+                ", emitter %.0f m at %.0f deg (95 %% ellipse %.0f x %.0f m)" % (
+                    d["range_m"], math.degrees(d["bearing_rad"]), d["major_m"],
+                    d["minor_m"]) if "range_m" in d else ""))
+            self._stream.flush()
 
     def on_meas(self, msg):
         self.meas.append(pmt.to_python(msg))
@@ -40,7 +54,7 @@ class collector(gr.basic_block):
     def on_state(self, msg):
         d = pmt.to_python(msg)
         self.states.append(d)
-        end = d["arrived"] or d["capped"]
+        end = (d["arrived"] and "reached" not in d) or d["capped"] or d.get("ended", False)
         tty = hasattr(self._stream, "isatty") and self._stream.isatty()
         every = self._every if tty else 10 * self._every  # a log gets fewer lines
         if self._every and (d["slot"] % every == 0 or end):
@@ -76,6 +90,7 @@ class closed_loop(gr.top_block):
         self.msg_connect(self.source, "state", self.collector, "state")
         self.msg_connect(self.estimator, "meas", self.collector, "meas")
         self.msg_connect(self.controller, "telemetry", self.collector, "telemetry")
+        self.msg_connect(self.controller, "status", self.collector, "status")
 
 
 class state_to_nav(gr.basic_block):
@@ -94,3 +109,37 @@ class state_to_nav(gr.basic_block):
         except (KeyError, TypeError, ValueError, AttributeError):
             return
         self.message_port_pub(pmt.intern("nav"), pmt.to_pmt({"heading": h}))
+
+
+def arrival_summary(states, status):
+    """The arrival and location figures of a self_arrival flight from closed_loop's
+    collected 'state' (truth) and 'status' messages, as rfseek.simulation's run_summary
+    computes them: declared, arrival_detect_distance_m (true horizontal distance at the
+    declaration), false_arrival (> 1 km), located, location (the first fix: east_m,
+    north_m relative to the vehicle, major_m, minor_m, major_angle_rad), the vehicle's
+    true position then, location_error_m and location_in_ellipse."""
+    by_slot = {int(s["slot"]): s for s in states}
+    out = {"declared": False, "located": False}
+    arrived = next((m for m in status if m["status"] in ("arrived", "located")), None)
+    if arrived is not None and int(arrived["slot"]) in by_slot:
+        st = by_slot[int(arrived["slot"])]
+        out.update(declared=True, arrival_slot=int(arrived["slot"]),
+                   arrival_time_s=st["time"], arrival_detect_distance_m=st["distance"],
+                   false_arrival=st["distance"] > 1000.0)
+    fix = next((m for m in status if m["status"] == "located" and "east_m" in m), None)
+    if fix is not None and int(fix["slot"]) in by_slot:
+        st = by_slot[int(fix["slot"])]
+        ex, ey = fix["east_m"] + st["x"], fix["north_m"] + st["y"]  # emitter: origin
+        ca, sa = math.cos(fix["major_angle_rad"]), math.sin(fix["major_angle_rad"])
+        u = (ex * ca + ey * sa) / max(fix["major_m"], 1e-9)
+        v = (-ex * sa + ey * ca) / max(fix["minor_m"], 1e-9)
+        out.update(located=True, location_slot=int(fix["slot"]),
+                   location={k: fix[k] for k in (
+                       "east_m", "north_m", "range_m", "bearing_rad", "major_m", "minor_m",
+                       "major_angle_rad", "wind_east_mps", "wind_north_mps", "altitude_m",
+                       "rms_hz")},
+                   vehicle_xy_at_fix=(st["x"], st["y"]),
+                   estimated_emitter_xy=(st["x"] + fix["east_m"], st["y"] + fix["north_m"]),
+                   location_error_m=math.hypot(ex, ey),
+                   location_in_ellipse=u * u + v * v <= 1.0)
+    return out

@@ -7,6 +7,8 @@ measurements with the received power along the route (Fig. 6). Inputs are "colum
 dicts of equal-length numpy arrays, made from a flowgraph's collected messages
 (columns_from_messages) or from a core simulation (columns_from_result)."""
 
+import math
+
 import numpy as np
 
 
@@ -46,35 +48,71 @@ def columns_from_result(result, world_power_db=None):
     }
 
 
-def trajectory_figure(col, scatterers_xy=None, title=None, path=None):
-    """Fig. 5: emitter, scatterers, start, path with the stages marked."""
+def trajectory_figure(col, scatterers_xy=None, title=None, path=None, arrival=None):
+    """Fig. 5: emitter, scatterers, start, path with the stages marked. arrival (from
+    flowgraphs.arrival_summary, a self_arrival flight): the loiter, where arrival was
+    declared, the estimated emitter and its 95 % ellipse."""
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
-    fig, ax = plt.subplots(figsize=(7, 6.5))
-    ax.plot(0, 0, "r*", ms=14, label="emitter", zorder=5)
-    if scatterers_xy is not None and len(scatterers_xy):
-        sc = np.asarray(scatterers_xy, float).reshape(-1, 2)
-        ax.plot(sc[:, 0], sc[:, 1], "k^", ms=4, label="scatterers")
-    x, y, stage = col["x_m"], col["y_m"], col["stage"]
-    for st, colour, label in ((1, "tab:orange", "stage 1 (circle)"),
-                              (2, "tab:blue", "stage 2 (perturbations)")):
-        sel = stage == st
-        if sel.any():
-            xs, ys = x.astype(float).copy(), y.astype(float).copy()
-            xs[~sel] = np.nan  # break the line outside the stage
-            ys[~sel] = np.nan
-            ax.plot(xs, ys, "-", lw=1.2, color=colour, label=label)
-    ax.plot(x[0], y[0], "go", ms=8, label="start")
-    if "end_xy" in col:
-        ax.plot(*col["end_xy"], "bs", ms=6, label="end")
-    ax.add_patch(matplotlib.patches.Circle((0, 0), 200, fill=False, ls="--", color="r",
-                                           label="d_v"))
-    ax.set_aspect("equal", adjustable="datalim")
-    ax.set_xlabel("x (m)")
-    ax.set_ylabel("y (m)")
-    ax.grid(alpha=0.3)
-    ax.legend(fontsize=8, loc="best")
+    zoom = bool(arrival and arrival.get("declared"))
+    if zoom:  # the whole flight, and the last few hundred metres around the emitter
+        fig, (ax, az) = plt.subplots(1, 2, figsize=(13, 6.5))
+    else:
+        fig, ax = plt.subplots(figsize=(7, 6.5))
+
+    def draw(ax, legend):
+        ax.plot(0, 0, "r*", ms=14, label="emitter", zorder=5)
+        if scatterers_xy is not None and len(scatterers_xy):
+            sc = np.asarray(scatterers_xy, float).reshape(-1, 2)
+            ax.plot(sc[:, 0], sc[:, 1], "k^", ms=4, label="scatterers")
+        x, y, stage = col["x_m"], col["y_m"], col["stage"]
+        for st, colour, label in ((1, "tab:orange", "stage 1 (circle)"),
+                                  (2, "tab:blue", "stage 2 (perturbations)"),
+                                  (3, "tab:green", "loiter (arrival declared)")):
+            sel = stage == st
+            if sel.any():
+                xs, ys = x.astype(float).copy(), y.astype(float).copy()
+                xs[~sel] = np.nan  # break the line outside the stage
+                ys[~sel] = np.nan
+                ax.plot(xs, ys, "-", lw=1.2, color=colour, label=label)
+        ax.plot(x[0], y[0], "go", ms=8, label="start")
+        if "end_xy" in col:
+            ax.plot(*col["end_xy"], "bs", ms=6, label="end")
+        ax.add_patch(matplotlib.patches.Circle((0, 0), 200, fill=False, ls="--", color="r",
+                                               label="d_v"))
+        if arrival and arrival.get("declared"):
+            k = int(np.argmax(stage == 3)) if (stage == 3).any() else None
+            if k is not None:
+                ax.plot(x[k], y[k], "mv", ms=8, label="arrival declared (%.0f m)"
+                        % arrival["arrival_detect_distance_m"])
+        if arrival and arrival.get("located"):
+            ex, ey = arrival["estimated_emitter_xy"]
+            loc = arrival["location"]
+            ax.plot(ex, ey, "mx", ms=10, mew=2, label="estimated emitter (error %.1f m)"
+                    % arrival["location_error_m"])
+            ax.add_patch(matplotlib.patches.Ellipse(
+                (ex, ey), 2 * loc["major_m"], 2 * loc["minor_m"],
+                angle=np.degrees(loc["major_angle_rad"]), fill=False, color="m",
+                label="95 % ellipse"))
+        ax.set_aspect("equal", adjustable="datalim")
+        ax.set_xlabel("x (m)")
+        ax.set_ylabel("y (m)")
+        ax.grid(alpha=0.3)
+        if legend:
+            ax.legend(fontsize=8, loc="best")
+
+    draw(ax, True)
+    if zoom:
+        draw(az, False)
+        half = 300.0
+        if arrival.get("located"):
+            ex, ey = arrival["estimated_emitter_xy"]
+            half = max(half, 1.3 * math.hypot(ex, ey))
+        az.set_aspect("equal", adjustable="box")
+        az.set_xlim(-half, half)
+        az.set_ylim(-half, half)
+        az.set_title("around the emitter: loiter, fix and its 95 % ellipse", fontsize=10)
     ax.set_title(title or "trajectory", fontsize=10)
     fig.tight_layout()
     if path:

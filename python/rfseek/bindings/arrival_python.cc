@@ -4,7 +4,7 @@
  */
 
 /* BINDTOOL_HEADER_FILE(arrival.h) */
-/* BINDTOOL_HEADER_FILE_HASH(c46027fa2e56fb67ebc1a14e0bf18853) */
+/* BINDTOOL_HEADER_FILE_HASH(74630a7f379f1aeff6daa8e3139dfe75) */
 
 #include <gr-rfseek/arrival.h>
 #include <pybind11/pybind11.h>
@@ -23,6 +23,7 @@ void bind_arrival(py::module& m)
         .def_readwrite("window_s", &overflight_config::window_s)
         .def_readwrite("heading_band_rad", &overflight_config::heading_band_rad)
         .def_readwrite("power_rise_db", &overflight_config::power_rise_db)
+        .def_readwrite("drift_s", &overflight_config::drift_s)
         .def_readwrite("block_slots", &overflight_config::block_slots)
         .def_readwrite("confirm_blocks", &overflight_config::confirm_blocks)
         .def_readwrite("min_snr_db", &overflight_config::min_snr_db);

@@ -4,7 +4,7 @@
  */
 
 /* BINDTOOL_HEADER_FILE(seeker.h) */
-/* BINDTOOL_HEADER_FILE_HASH(c6d8e6bfb27bba7ca54954de66a8f8b9) */
+/* BINDTOOL_HEADER_FILE_HASH(06882d2fcd47ace863bf99c007c54522) */
 
 #include "kwargs.h"
 #include <gr-rfseek/seeker.h>
@@ -67,7 +67,7 @@ void bind_seeker(py::module& m)
     RW(self_arrival,
        "detect the overflight, loiter and locate the emitter (any strategy); False: the "
        "strategy only");
-    RW(arrival_swing, "overflight: frequency drop beyond turns, x f_d,max");
+    RW(arrival_swing, "overflight: frequency drop beyond turns and drift, x f_d,max");
     RW(arrival_window_s, "overflight: the drop must happen within this time (s)");
     RW(arrival_heading_band_rad,
        "overflight: heading spread allowed over the drop (rad)");

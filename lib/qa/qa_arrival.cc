@@ -1,0 +1,296 @@
+/*
+ * Copyright 2026 gr-rfseek authors.
+ * SPDX-License-Identifier: GPL-3.0-or-later
+ *
+ * arrival: the overflight detector on synthetic Doppler/power tracks (straight passes at
+ * 50, 150 and 400 m, far tracks with fading, turns and drift that must not trigger), the
+ * emitter locator on synthetic orbits against the geometry that made them, and the
+ * homing wrapper in the closed loop (pass-through before arrival, declaration and fix).
+ */
+
+#include <gr-rfseek/arrival.h>
+#include <gr-rfseek/rng.h>
+#include <gr-rfseek/seeker.h>
+#include <gr-rfseek/simulation.h>
+#include <gtest/gtest.h>
+#include <cmath>
+#include <stdexcept>
+
+using namespace gr::rfseek;
+
+namespace {
+
+constexpr double V = 10.0, T = 0.05, FC = 2.0e9;
+const double LAMBDA = SPEED_OF_LIGHT / FC;
+const double A = V / LAMBDA; // f_d,max
+
+overflight_config detector_cfg()
+{
+    overflight_config c;
+    c.max_doppler_hz = A;
+    c.slot_period_s = T;
+    return c;
+}
+
+struct pass_result {
+    bool detected = false;
+    double along_m = 0.0; // along-track position at detection (0: closest approach)
+    double range_m = 0.0; // horizontal distance then
+};
+
+/*
+ * A straight pass: the UAV flies +x at V, the emitter sits at (0, offset). Doppler
+ * (+ approaching) plus CFO 300 Hz drifting at drift Hz/s, 1 Hz white frequency noise,
+ * power -20 log10(range) with 1 dB noise, heading noise 2 deg.
+ */
+pass_result straight_pass(double offset_m, double drift, std::uint64_t seed)
+{
+    overflight_detector d(detector_cfg());
+    rng g(seed, 7, 0);
+    pass_result out;
+    for (int k = 0; k < 8000; ++k) {
+        const double t = k * T;
+        const double x = -2500.0 + V * t;
+        const double r = std::hypot(x, offset_m);
+        const double f = 300.0 + drift * t + A * (-x) / r + g.normal();
+        const double p = -20.0 * std::log10(r) + g.normal();
+        const double h = 0.035 * g.normal();
+        if (d.update(t, f, p, 10.0, true, h)) {
+            out.detected = true;
+            out.along_m = x;
+            out.range_m = r;
+            break;
+        }
+    }
+    return out;
+}
+
+} // namespace
+
+TEST(overflight_detector, detects_straight_passes_at_50_150_400_m)
+{
+    for (double offset : { 50.0, 150.0, 400.0 })
+        for (double drift : { -0.5, 0.0, 0.5 }) {
+            const pass_result p = straight_pass(offset, drift, 11);
+            ASSERT_TRUE(p.detected) << "offset " << offset << " drift " << drift;
+            // At the closest approach, whatever the CFO drift (fitted with the pass):
+            // within 0.3 offset + 50 m of it along the track.
+            EXPECT_LT(std::abs(p.along_m), 0.3 * offset + 50.0)
+                << "offset " << offset << " drift " << drift;
+            EXPECT_LT(p.range_m, 1.1 * offset + 50.0) << offset << " drift " << drift;
+        }
+}
+
+TEST(overflight_detector, far_track_with_fading_turns_and_drift_does_not_trigger)
+{
+    // 5 km away, flying toward the emitter with the paper's +-10 deg perturbations,
+    // Rayleigh-faded power, 5 % invalid measurements and 3 % wild ones; CFO drifting
+    // at the scenario's extreme 0.5 Hz/s either way.
+    for (double drift : { -0.5, 0.5 })
+        for (std::uint64_t seed = 1; seed <= 5; ++seed) {
+            overflight_detector d(detector_cfg());
+            rng g(seed, 8, 0);
+            double y = -5000.0;
+            for (int k = 0; k < 12000; ++k) {
+                const double t = k * T;
+                const double h =
+                    M_PI / 2 + ((k / 20) % 2 ? 0.1745 : -0.1745) + 0.035 * g.normal();
+                y += V * T * std::sin(h); // x drift is irrelevant at this range
+                const double bearing = M_PI / 2;
+                double f = 100.0 + drift * t + A * std::cos(h - bearing) + g.normal();
+                if (g.uniform(0.0, 1.0) < 0.03)
+                    f += g.uniform(-300.0, 300.0);
+                const double fade = -std::log(std::max(g.uniform(0.0, 1.0), 1e-12));
+                const double p = -20.0 * std::log10(-y) + 10.0 * std::log10(fade);
+                const bool valid = g.uniform(0.0, 1.0) > 0.05;
+                ASSERT_FALSE(d.update(t, f, p, valid ? 0.0 : -30.0, valid, h))
+                    << "drift " << drift << " seed " << seed << " t " << t;
+                if (y > -4000.0)
+                    break;
+            }
+        }
+}
+
+TEST(overflight_detector, a_turn_away_far_from_the_emitter_does_not_trigger)
+{
+    // Far away, turn 90 deg (drop f_d,max: explained by the turn) and, separately, a
+    // full about-turn at 30 deg/s (outside the heading band).
+    for (double turn : { M_PI / 2, M_PI }) {
+        overflight_detector d(detector_cfg());
+        rng g(3, 9, 0);
+        double h = 0.0;
+        for (int k = 0; k < 4000; ++k) {
+            const double t = k * T;
+            if (t > 60.0)
+                h = std::min(turn, h + 0.5236 * T);
+            const double f = A * std::cos(h) + g.normal();
+            const double p = -74.0 + 3.0 * g.normal();
+            ASSERT_FALSE(d.update(t, f, p, 0.0, true, h)) << "turn " << turn;
+        }
+    }
+}
+
+TEST(overflight_detector, ignores_unusable_measurements_and_validates)
+{
+    overflight_detector d(detector_cfg());
+    for (int k = 0; k < 4000; ++k)
+        EXPECT_FALSE(d.update(k * T, NAN, NAN, NAN, true, NAN));
+    overflight_config bad = detector_cfg();
+    bad.swing = 0.0;
+    EXPECT_THROW(overflight_detector{ bad }, std::invalid_argument);
+    bad = detector_cfg();
+    bad.block_slots = 0;
+    EXPECT_THROW(overflight_detector{ bad }, std::invalid_argument);
+}
+
+namespace {
+
+/*
+ * A synthetic orbit flown in the air frame: radius R around (ox, oy) (air frame), wind
+ * (wx, wy), emitter fixed on the ground at (ex, ey) at t = 0, height h. The locator gets
+ * the air-frame (dead-reckoned) positions and air velocities and the frequencies the
+ * ground geometry makes (+ CFO 500 Hz + 0.2 Hz/s + noise).
+ */
+emitter_location fly_orbit(double ox,
+                           double oy,
+                           double R,
+                           double wx,
+                           double wy,
+                           double ex,
+                           double ey,
+                           double h,
+                           double noise_hz,
+                           double* truth_east,
+                           double* truth_north)
+{
+    emitter_locator loc(LAMBDA);
+    rng g(5, 10, 0);
+    const double w = V / R;
+    const int n = static_cast<int>(2.0 * M_PI / w / T);
+    double qx = 0, qy = 0, gx = 0, gy = 0;
+    for (int k = 0; k <= n; ++k) {
+        const double t = k * T;
+        const double a = w * t;
+        qx = ox + R * std::sin(a); // heading a, counter-clockwise
+        qy = oy - R * std::cos(a);
+        const double vx = V * std::cos(a), vy = V * std::sin(a);
+        gx = qx + wx * t; // ground position = air position + wind drift
+        gy = qy + wy * t;
+        const double rx = ex - gx, ry = ey - gy;
+        const double s = std::sqrt(rx * rx + ry * ry + h * h);
+        const double dop = ((vx + wx) * rx + (vy + wy) * ry) / (LAMBDA * s);
+        loc.add(t, qx, qy, vx, vy, 500.0 + 0.2 * t + dop + noise_hz * g.normal());
+    }
+    *truth_east = ex - gx;
+    *truth_north = ey - gy;
+    return loc.fit(qx, qy);
+}
+
+} // namespace
+
+TEST(emitter_locator, finds_the_emitter_from_an_orbit)
+{
+    struct case_ {
+        double ox, oy, wx, wy, ex, ey, h, tol;
+    };
+    // Calm and flat; calm at 100 m with the emitter under the orbit (the Doppler is
+    // weak there: a wider ellipse, and it says so); 4 m/s wind at 100 m (the emitter
+    // drifts 150 m in the air frame over the orbit); emitter outside the orbit.
+    for (const case_& c : { case_{ 0, 0, 0, 0, 30, -20, 0, 2.0 },
+                            case_{ 0, 0, 0, 0, -40, 10, 100, 15.0 },
+                            case_{ 0, 0, 3.0, -2.6, 20, 35, 100, 4.0 },
+                            case_{ 0, 0, 0, 0, 150, 80, 0, 4.0 } }) {
+        double te = 0, tn = 0;
+        const emitter_location l =
+            fly_orbit(c.ox, c.oy, 50.0, c.wx, c.wy, c.ex, c.ey, c.h, 1.0, &te, &tn);
+        ASSERT_TRUE(l.valid);
+        const double err = std::hypot(l.east_m - te, l.north_m - tn);
+        EXPECT_LT(err, c.tol) << "emitter " << c.ex << "," << c.ey << " wind " << c.wx
+                              << " h " << c.h << " major " << l.major_m;
+        EXPECT_NEAR(l.wind_east_mps, c.wx, 0.5);
+        EXPECT_NEAR(l.wind_north_mps, c.wy, 0.5);
+        EXPECT_LT(l.rms_hz, 1.3);
+        // The ellipse is the size of the error to expect: it covers the error, and is
+        // not far larger than the worst case here.
+        EXPECT_LT(err, l.major_m + 0.5) << "emitter " << c.ex << "," << c.ey;
+        EXPECT_LT(l.major_m, 30.0);
+        EXPECT_GE(l.major_m, l.minor_m);
+    }
+}
+
+TEST(emitter_locator, needs_data_and_skips_non_finite_input)
+{
+    emitter_locator loc(LAMBDA);
+    for (int k = 0; k < 40; ++k)
+        loc.add(k * T, k, 0.0, V, 0.0, 100.0);
+    EXPECT_FALSE(loc.fit(0.0, 0.0).valid); // too few points
+    loc.add(NAN, 0, 0, 0, 0, 0);
+    loc.add(1.0, 0, 0, 0, 0, INFINITY);
+    EXPECT_EQ(loc.size(), 40u);
+    EXPECT_THROW(emitter_locator(0.0), std::invalid_argument);
+}
+
+TEST(homing_seeker, passes_the_strategy_through_before_arrival)
+{
+    // The same run with and without the wrapper: identical headings until arrival is
+    // declared (the world ends at d_v here: oracle).
+    scenario sc;
+    sc.seed = 4;
+    seeker_config plain = simulation::seeker_for(sc, "paper");
+    seeker_config wrapped = plain;
+    wrapped.self_arrival = true;
+    const run_result a = simulation(sc, plain).run(true);
+    const run_result b = simulation(sc, wrapped).run(true);
+    ASSERT_EQ(a.records.size(), b.records.size());
+    for (std::size_t k = 0; k < a.records.size(); ++k) {
+        if (b.records[k].status != 0)
+            break;
+        ASSERT_EQ(a.records[k].cmd_heading_rad, b.records[k].cmd_heading_rad) << k;
+    }
+}
+
+TEST(homing_seeker, declares_arrival_and_locates_in_the_closed_loop)
+{
+    for (const char* strategy : { "paper", "adaptive" }) {
+        scenario sc;
+        sc.seed = 2;
+        sc.self_arrival = true;
+        const run_result r =
+            simulation(sc, simulation::seeker_for(sc, strategy)).run(true);
+        const run_summary& s = r.summary;
+        EXPECT_TRUE(s.success) << strategy;
+        ASSERT_TRUE(s.declared) << strategy;
+        EXPECT_LT(s.arrival_detect_distance_m, 300.0) << strategy;
+        EXPECT_FALSE(s.false_arrival);
+        ASSERT_TRUE(s.located) << strategy;
+        EXPECT_LT(s.location_error_m, 30.0) << strategy;
+        // The run ended at the fix, on the vehicle's word, loitering near the emitter.
+        EXPECT_EQ(r.records.back().status, 2);
+        EXPECT_LT(r.records.back().distance_m, 300.0);
+        EXPECT_GT(s.total_distance_m, s.distance_m);
+        // The record of the error is the geometry's: fix + vehicle = emitter (origin).
+        EXPECT_NEAR(std::hypot(r.location.east_m + r.location_vehicle_x_m,
+                               r.location.north_m + r.location_vehicle_y_m),
+                    s.location_error_m,
+                    1e-9);
+    }
+}
+
+TEST(homing_seeker, validates_its_constants)
+{
+    seeker_config c;
+    c.self_arrival = true;
+    c.loiter_radius_m = 0.0;
+    EXPECT_THROW(seeker::make(c), std::invalid_argument);
+    c = seeker_config();
+    c.arrival_swing = 3.0;
+    EXPECT_THROW(c.validate(), std::invalid_argument);
+    c = seeker_config();
+    c.locate_max_orbits = 0.5; // below locate_orbits
+    try {
+        c.validate();
+        FAIL();
+    } catch (const std::invalid_argument& e) {
+        EXPECT_NE(std::string(e.what()).find("locate_max_orbits"), std::string::npos);
+    }
+}

@@ -45,7 +45,7 @@ private:
     std::set<std::string> d_logged;
 
     void publish_status(const command& c, double time_s);
-    int d_status = -1;        // last published status (-1: none yet)
+    int d_status = -1; // last published status (-1: none yet)
     emitter_location d_location;
     double d_fix_time = -1.0; // time of the last published fix
 

@@ -53,10 +53,73 @@ class qa_closed_loop(gr_unittest.TestCase):
             self.assertTrue(core.summary.success)
             self.assertAlmostEqual(states[-1]["distance_flown"], core.summary.distance_m)
 
+    def test_self_arrival_flowgraph_equals_core_and_publishes_status(self):
+        # --arrival self through GNU Radio: the controller declares arrival, loiters,
+        # publishes the fix on its status port and `done` ends channel_source's run; the
+        # same slots, fix and error as the core simulation.
+        sc = rfseek.scenario(seed=2, self_arrival=True)
+        tb = flowgraphs.closed_loop(sc, "adaptive")
+        tb.run()
+        core = rfseek.simulation(sc, rfseek.simulation.seeker_for(sc, "adaptive")).run()
+        c = core.columns()
+        tel, states, status = tb.collector.telemetry, tb.collector.states, tb.collector.status
+        n = len(c["x_m"])
+        self.assertEqual(len(tel), n)
+        self.assertTrue(np.array_equal(np.array([t["heading"] for t in tel]),
+                                       c["cmd_heading_rad"]))
+        self.assertEqual([t["status"] for t in tel], list(c["status"].astype(int)))
+        self.assertEqual([m["status"] for m in status], ["seeking", "arrived", "located"])
+        self.assertTrue(states[-1]["ended"])
+        self.assertTrue(states[-1]["reached"])
+        self.assertEqual(tb.controller.status(), 2)
+        a = flowgraphs.arrival_summary(states, status)
+        s = core.summary
+        self.assertTrue(a["declared"] and s.declared)
+        self.assertAlmostEqual(a["arrival_detect_distance_m"], s.arrival_detect_distance_m)
+        self.assertTrue(a["located"] and s.located)
+        self.assertAlmostEqual(a["location_error_m"], s.location_error_m, places=6)
+        self.assertLess(a["location_error_m"], 30.0)
+        fix = status[-1]
+        self.assertAlmostEqual(fix["range_m"], math.hypot(fix["east_m"], fix["north_m"]))
+        self.assertAlmostEqual(fix["major_m"], core.location.major_m)
+        loc = tb.controller.location()
+        self.assertTrue(loc.valid)
+        self.assertAlmostEqual(loc.east_m, fix["east_m"])
+
+    def test_status_without_self_arrival_says_seeking_once(self):
+        sc = rfseek.scenario(seed=3, initial_distance_m=1000.0)
+        tb = flowgraphs.closed_loop(sc, "paper")
+        tb.run()
+        self.assertEqual([m["status"] for m in tb.collector.status], ["seeking"])
+        self.assertNotIn("reached", tb.collector.states[-1])
+        self.assertEqual(tb.controller.status(), 0)
+        self.assertFalse(tb.controller.location().valid)
+
+    def test_rfseek_sim_arrival_self(self):
+        out = tempfile.mkdtemp(prefix="rfseek_sim_self_")
+        app = os.path.join(os.path.dirname(__file__), "..", "..", "apps", "rfseek-sim")
+        app = os.environ.get("RFSEEK_SOURCE_DIR") and os.path.join(
+            os.environ["RFSEEK_SOURCE_DIR"], "apps", "rfseek-sim") or app
+        p = subprocess.run([sys.executable, app, "--arrival", "self", "--seed", "2",
+                            "--strategy", "adaptive", "--quiet", "--out", out],
+                           capture_output=True, text=True)
+        self.assertEqual(p.returncode, 0, p.stderr)
+        import json
+        summ = json.load(open(os.path.join(out, "summary.json")))
+        self.assertEqual(summ["arrival"], "self")
+        self.assertTrue(summ["declared"] and summ["located"])
+        self.assertLess(summ["arrival_detect_distance_m"], 300.0)
+        self.assertLess(summ["location_error_m"], 30.0)
+        self.assertGreater(summ["total_distance_m"], summ["distance_m"])
+        self.assertIn("located: emitter", p.stdout)
+        self.assertGreater(os.path.getsize(os.path.join(out, "trajectory.png")), 10000)
+
     def test_grc_example_flies_the_core_trajectory(self):
         # examples/seek_sim.grc, compiled by grcc and run headless (offscreen Qt), gives the
         # core simulation's trajectory for its seed, for the default strategy and for the
-        # one given by its "strategy" parameter (as --strategy on its command line).
+        # one given by its "strategy" parameter (as --strategy on its command line), and
+        # with its "arrival" parameter set to self (--arrival self): the run then ends at
+        # the controller's fix, as in the core.
         source = os.environ.get("RFSEEK_SOURCE_DIR",
                                 os.path.join(os.path.dirname(__file__), "..", ".."))
         out = tempfile.mkdtemp(prefix="rfseek_grc_")
@@ -70,9 +133,12 @@ class qa_closed_loop(gr_unittest.TestCase):
         os.environ.setdefault("QT_QPA_PLATFORM", "offscreen")
         from PyQt5 import Qt
         app = Qt.QApplication.instance() or Qt.QApplication([])
-        for strategy in (None, "adaptive"):
-            tb = mod.seek_sim() if strategy is None else mod.seek_sim(strategy=strategy)
+        for strategy, arrival in ((None, "oracle"), ("adaptive", "oracle"),
+                                  ("adaptive", "self")):
+            tb = (mod.seek_sim() if strategy is None else
+                  mod.seek_sim(strategy=strategy, arrival=arrival))
             self.assertEqual(tb.controller.config().strategy, strategy or "paper")
+            self.assertEqual(tb.controller.config().self_arrival, arrival == "self")
             col = flowgraphs.collector()
             tb.msg_connect(tb.channel, "state", col, "state")
             tb.start()
@@ -87,7 +153,11 @@ class qa_closed_loop(gr_unittest.TestCase):
                                            c["x_m"]))
             self.assertTrue(np.array_equal(np.array([s["y"] for s in col.states[:n]]),
                                            c["y_m"]))
-            self.assertTrue(col.states[-1]["arrived"])
+            if arrival == "self":
+                self.assertTrue(col.states[-1]["ended"])
+                self.assertTrue(core.summary.located)
+            else:
+                self.assertTrue(col.states[-1]["arrived"])
             del tb
         del app
 

@@ -88,6 +88,49 @@ class qa_montecarlo(gr_unittest.TestCase):
         self.assertTrue(os.path.getsize(os.path.join(self.tmp, "mc_histograms.png")) > 1000)
         self.assertTrue(os.path.getsize(os.path.join(self.tmp, "mc_comparison.png")) > 1000)
 
+    def test_arrival_self(self):
+        # The acceptance study at relaxed bounds: 30 reference runs, the vehicle
+        # deciding its arrival and locating the emitter without truth.
+        p, out = run_mc(self.tmp, "self", "--runs", "30", "--strategy", "paper",
+                        "--arrival", "self", "--threads", "2", "--quiet")
+        self.assertEqual(p.returncode, 0, p.stderr)
+        res = json.load(open(out))
+        rows = res["rows"]
+        self.assertEqual(len(rows), 30)
+        detect = [r["arrival_detect_distance_m"] for r in rows if r["declared"]]
+        errors = [r["location_error_m"] for r in rows if r["located"]]
+        self.assertGreaterEqual(sum(d <= 300.0 for d in detect), 29)  # >= 95 %
+        self.assertEqual(sum(r["false_arrival"] for r in rows), 0)
+        self.assertGreaterEqual(len(errors), 28)
+        self.assertLessEqual(statistics.median(errors), 30.0)
+        self.assertLessEqual(percentile(errors, 0.9), 80.0)
+        summ = res["summary"]["paper"]
+        self.assertAlmostEqual(summ["location_error_m_median"], statistics.median(errors))
+        self.assertAlmostEqual(summ["declared_within_300m_rate"],
+                               sum(d <= 300.0 for d in detect) / 30)
+        # The seeking figures are those of the oracle runs (distance to d_v): the path
+        # up to d_v does not depend on what happens after it.
+        p2, out2 = run_mc(self.tmp, "oracle", "--runs", "30", "--strategy", "paper",
+                          "--threads", "2", "--quiet")
+        self.assertEqual(p2.returncode, 0, p2.stderr)
+        oracle = json.load(open(out2))["rows"]
+        for a, b in zip(rows, oracle):
+            if a["declared"] and a["arrival_detect_distance_m"] < 200.0:
+                self.assertEqual(a["distance_m"], b["distance_m"])
+        # The CSV has the arrival columns and --resume reads them back.
+        head = open(out[:-5] + ".csv").readline().strip().split(",")
+        for col in ("declared", "arrival_detect_distance_m", "false_arrival", "located",
+                    "location_error_m", "location_major_m", "location_in_ellipse"):
+            self.assertIn(col, head)
+        p3 = subprocess.run([MC, "--out", out, "--runs", "30", "--strategy", "paper",
+                             "--arrival", "self", "--resume", "--quiet"],
+                            capture_output=True, text=True)
+        self.assertEqual(p3.returncode, 0, p3.stderr)
+        self.assertEqual(json.load(open(out))["rows"], rows)
+        bad = subprocess.run([MC, "--arrival", "maybe"], capture_output=True, text=True)
+        self.assertEqual(bad.returncode, 2)
+        self.assertIn("--arrival", bad.stderr)
+
     def test_rows_do_not_depend_on_thread_count(self):
         args = ["--runs", "6", "--seed", "11", "--strategy", "paper,rss_baseline",
                 "--set", "flight_cap_m=4000"] + SHORT

@@ -4,7 +4,7 @@
  */
 
 /* BINDTOOL_HEADER_FILE(arrival.h) */
-/* BINDTOOL_HEADER_FILE_HASH(74630a7f379f1aeff6daa8e3139dfe75) */
+/* BINDTOOL_HEADER_FILE_HASH(a1842ee93d9547811793f53dbb4fd039) */
 
 #include <gr-rfseek/arrival.h>
 #include <pybind11/pybind11.h>

@@ -45,6 +45,20 @@ class qa_live(gr_unittest.TestCase):
         self.assertEqual(p.returncode, 0, p.stderr)
         self.assertIn("arrived", p.stderr)
 
+    def test_simulated_source_arrival_self(self):
+        # Free-running and paced (20 x real time: commands a few slots late, timing not
+        # reproducible): the controller declares arrival, loiters and ends the simulated
+        # flight by itself, near the emitter.
+        p = live("--source", "sim", "--speedup", "20", "--set", "initial_distance_m=800",
+                 "--set", "start_angle_rad=0", "--set", "start_heading_rad=3.14159",
+                 "--strategy", "paper_no_circle", "--arrival", "self", "--duration", "120")
+        self.assertEqual(p.returncode, 0, p.stderr)
+        self.assertIn("mission done (self arrival)", p.stderr)
+        self.assertRegex(p.stderr, r"final status located: emitter \d+ m")
+        end = float(re.search(r"mission done \(self arrival\), \d+ m flown, (\d+) m from",
+                              p.stderr).group(1))
+        self.assertLess(end, 300.0)
+
     def test_free_running_paced_run_flies_the_late_commands(self):
         # Paced to (20 x) real time, free-running: each command reaches the simulator after
         # its slot has passed. Flown late, they turn the UAV, which starts flying away,

@@ -75,8 +75,8 @@ overflight_detector::overflight_detector(const overflight_config& cfg) : d_cfg(c
         bad("max_doppler_hz", "> 0");
     if (!(cfg.slot_period_s > 0.0) || !std::isfinite(cfg.slot_period_s))
         bad("slot_period_s", "> 0");
-    if (!(cfg.swing > 0.0 && cfg.swing <= 2.0))
-        bad("swing", "in (0, 2]");
+    if (!(cfg.swing >= 0.5 && cfg.swing <= 2.0))
+        bad("swing", "in [0.5, 2]");
     if (!(cfg.window_s > 0.0) || !std::isfinite(cfg.window_s))
         bad("window_s", "> 0");
     if (!(cfg.heading_band_rad > 0.0 && cfg.heading_band_rad <= M_PI))
@@ -540,7 +540,8 @@ emitter_location emitter_locator::fit(double vehicle_x_m, double vehicle_y_m) co
     for (std::size_t q = 0; q < 5; ++q)
         a[q][q] += 1e-9 * scale + 1e-12;
     std::array<double, 5> e0{ 1, 0, 0, 0, 0 }, e1{ 0, 1, 0, 0, 0 };
-    if (!solve(a, e0) || !solve(a, e1))
+    std::array<double, 5> e2{ 0, 0, 1, 0, 0 }, e3{ 0, 0, 0, 1, 0 };
+    if (!solve(a, e0) || !solve(a, e1) || !solve(a, e2) || !solve(a, e3))
         return out;
     const double sxx = s2 * inflation * e0[0], syy = s2 * inflation * e1[1];
     const double sxy = s2 * inflation * 0.5 * (e0[1] + e1[0]);
@@ -554,6 +555,7 @@ emitter_location emitter_locator::fit(double vehicle_x_m, double vehicle_y_m) co
     out.north_m = p[1] - vehicle_y_m;
     out.wind_east_mps = p[2];
     out.wind_north_mps = p[3];
+    out.wind_sigma_mps = std::sqrt(std::max(0.5 * s2 * inflation * (e2[2] + e3[3]), 0.0));
     out.altitude_m = std::abs(p[4]);
     out.cfo_hz = c0;
     out.rms_hz = std::sqrt(r0 / used);

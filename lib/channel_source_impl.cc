@@ -158,6 +158,12 @@ void channel_source_impl::handle_cmd(const pmt::pmt_t& msg)
         }
         if (pmt::is_bool(done) && pmt::to_bool(done))
             d_end_requested = true;
+        if (pmt::is_null(done) && !d_warned_no_done) {
+            d_warned_no_done = true;
+            d_logger->warn("the scenario has self_arrival but the cmd messages carry no "
+                           "'done': the run ends only at the flight cap (give the "
+                           "seeking_controller self_arrival too)");
+        }
     }
 }
 

@@ -70,6 +70,7 @@ private:
     bool d_done = false;
     bool d_have_cmd = false;
     bool d_end_requested = false; // self_arrival: the controller declared it done
+    bool d_warned_no_done = false;
     double d_cmd_heading = 0.0;
     std::uint64_t d_malformed = 0;
     std::uint64_t d_stale = 0;

@@ -8,10 +8,11 @@
  *   seeking   the strategy steers; the overflight detector watches its measurements;
  *   arrived   the overflight was seen: orbit to the left at v / loiter_radius_m, dead-
  *             reckon the path (measured heading x airspeed) and collect the frequencies;
- *   located   after locate_orbits orbits (then every quarter orbit) the emitter_locator
- *             fits the emitter; a fix with a 95 % ellipse under locate_max_axis_m is
- *             published. The orbit goes on; `done` is set at the first fix, or after
- *             locate_max_orbits without one.
+ *   located   after locate_orbits orbits the emitter_locator fits the emitter; the
+ *             vehicle orbits that estimate (wind triangle) for locate_orbits more and
+ *             fits again; a fix with a 95 % ellipse under locate_max_axis_m is
+ *             published and `done` set (or after locate_max_orbits without one). The
+ *             orbit goes on around the last estimate; no more fits after `done`.
  */
 
 #include "strategies.h"
@@ -70,6 +71,7 @@ public:
                     m.time_s, m.freq_hz, m.power_db, m.snr_db, m.valid, h)) {
                 d_status = 1;
                 d_loiter_start = m.time_s;
+                d_last_slot = m.slot;
                 d_last_heading = h;
                 d_heading_cmd = h; // the orbit starts from the heading flown
                 c.heading_rad = wrap(d_heading_cmd + turn_per_slot());
@@ -86,8 +88,9 @@ public:
     int stage() const override { return d_status == 0 ? d_inner->stage() : 3; }
     double theta_est_rad() const override
     {
-        if (d_location.valid)
-            return std::atan2(d_location.north_m, d_location.east_m);
+        if (d_location.valid) // toward the fix, from where the vehicle is now
+            return std::atan2(d_location.north_m + d_location.dr_y_m - d_y,
+                              d_location.east_m + d_location.dr_x_m - d_x);
         return d_inner->theta_est_rad();
     }
     std::uint64_t updates() const override { return d_inner->updates(); }
@@ -107,16 +110,21 @@ private:
         command c;
         c.slot = m.slot;
         c.stage = 3;
-        // Dead reckoning: the leg since the previous slot at the mean of its two
-        // measured headings, at the airspeed.
+        // Dead reckoning: the legs since the previous measurement (one per slot: a
+        // beacon missed by the receiver leaves a gap) at the mean of the two measured
+        // headings, at the airspeed.
+        const std::uint64_t slots =
+            m.slot > d_last_slot ? std::min<std::uint64_t>(m.slot - d_last_slot, 1000)
+                                 : 1;
+        d_last_slot = std::max(d_last_slot, m.slot);
         const double h = m.has_heading ? m.heading_rad : d_heading_cmd;
         const double mean = d_last_heading + 0.5 * wrap(h - d_last_heading);
-        const double step = d_cfg.speed_mps * d_cfg.slot_period_s;
+        const double step = d_cfg.speed_mps * d_cfg.slot_period_s * slots;
         d_x += step * std::cos(mean);
         d_y += step * std::sin(mean);
         d_last_heading = h;
-        const bool usable =
-            m.valid && m.snr_db >= d_cfg.min_snr_db && std::isfinite(m.freq_hz);
+        const bool usable = m.valid && m.snr_db >= d_cfg.min_snr_db &&
+                            std::isfinite(m.freq_hz) && !d_done;
         if (usable)
             d_locator.add(m.time_s,
                           d_x,
@@ -128,7 +136,7 @@ private:
         c.accepted = usable;
 
         const double loitered = m.time_s - d_loiter_start;
-        if (loitered >= d_next_fit_s) {
+        if (!d_done && loitered >= d_next_fit_s) {
             const emitter_location l = d_locator.fit(d_x, d_y);
             if (l.valid && l.major_m <= d_cfg.locate_max_axis_m && d_centred) {
                 d_location = l;
@@ -141,16 +149,22 @@ private:
                 d_target_x = d_x + l.east_m;
                 d_target_y = d_y + l.north_m;
                 d_target_t = m.time_s;
-                d_wind_x = l.wind_east_mps;
-                d_wind_y = l.wind_north_mps;
+                // The wind moves the estimate in the air frame; one orbit determines it
+                // poorly in calm air, so it is shrunk by two standard errors (else a
+                // spurious wind drags the centred orbit away from the emitter).
+                const double wn = std::hypot(l.wind_east_mps, l.wind_north_mps);
+                const double keep =
+                    wn > 0.0 ? std::max(0.0, 1.0 - 2.0 * l.wind_sigma_mps / wn) : 0.0;
+                d_wind_x = keep * l.wind_east_mps;
+                d_wind_y = keep * l.wind_north_mps;
                 d_centred = true;
             }
             d_next_fit_s = loitered + (l.valid ? d_cfg.locate_orbits : 0.25) * orbit_s();
         }
         if (loitered >= d_cfg.locate_max_orbits * orbit_s())
             d_done = true;
-        d_heading_cmd =
-            d_centred ? orbit_heading(m.time_s) : wrap(d_heading_cmd + turn_per_slot());
+        d_heading_cmd = d_centred ? orbit_heading(m.time_s)
+                                  : wrap(d_heading_cmd + turn_per_slot() * slots);
         c.heading_rad = d_heading_cmd;
         c.theta_est_rad = theta_est_rad();
         c.status = d_status;
@@ -205,6 +219,7 @@ private:
     bool d_done = false;
     double d_heading_cmd = 0.0, d_last_heading = 0.0, d_loiter_start = 0.0;
     double d_x = 0.0, d_y = 0.0; // dead-reckoned, origin where arrival was declared
+    std::uint64_t d_last_slot = 0;
     emitter_location d_location;
     double d_next_fit_s;
     bool d_centred = false; // orbiting an estimate (after the first fit)

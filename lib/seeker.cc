@@ -104,8 +104,10 @@ void seeker_config::validate() const
             "in [adaptive_delta_min_rad, pi/2)");
     if (!(adaptive_reacquire_rad > 0.0 && adaptive_reacquire_rad <= M_PI / 2))
         bad("adaptive_reacquire_rad", adaptive_reacquire_rad, "in (0, pi/2]");
-    if (!(arrival_swing > 0.0 && arrival_swing <= 2.0))
-        bad("arrival_swing", arrival_swing, "in (0, 2] (x f_d,max)");
+    if (!(arrival_swing >= 0.5 && arrival_swing <= 2.0))
+        bad("arrival_swing",
+            arrival_swing,
+            "in [0.5, 2] (x f_d,max; below 0.5 a turn within the band could pass)");
     if (!(arrival_window_s > 0.0 && arrival_window_s <= 3600.0))
         bad("arrival_window_s", arrival_window_s, "in (0, 3600] s");
     if (!(arrival_heading_band_rad > 0.0 && arrival_heading_band_rad <= M_PI))
@@ -118,6 +120,10 @@ void seeker_config::validate() const
         bad("arrival_confirm_blocks", arrival_confirm_blocks, "in [1, 1000]");
     if (!(loiter_radius_m >= speed_mps * slot_period_s / M_PI && loiter_radius_m <= 1e5))
         bad("loiter_radius_m", loiter_radius_m, "in [v T_slot / pi, 1e5] m");
+    if (turn_rate_rad_per_s > 0.0 && loiter_radius_m < speed_mps / turn_rate_rad_per_s)
+        bad("loiter_radius_m",
+            loiter_radius_m,
+            ">= speed_mps / turn_rate_rad_per_s (an orbit the vehicle can turn)");
     if (!(locate_orbits > 0.0 && locate_orbits <= 100.0))
         bad("locate_orbits", locate_orbits, "in (0, 100]");
     if (!(locate_max_orbits >= locate_orbits && locate_max_orbits <= 1000.0))

@@ -147,6 +147,10 @@ void seeking_controller_impl::handle_meas(const pmt::pmt_t& msg)
         else
             m.valid = false;
     }
+    // Without a time, the slot's nominal one (the arrival detector and the locator
+    // measure time; the estimator always sends it).
+    if (!number(time))
+        m.time_s = static_cast<double>(m.slot) * d_seeker->config().slot_period_s;
     if (number(heading) && std::isfinite(as_double(heading))) {
         m.has_heading = true;
         m.heading_rad = as_double(heading);
@@ -193,9 +197,10 @@ void seeking_controller_impl::publish_status(const command& c, double time_s)
     // On every change of status, and on every new fix while located.
     const bool new_fix =
         c.status == 2 && c.location.valid && c.location.time_s != d_fix_time;
-    if (c.status == d_status && !new_fix)
+    if (c.status == d_status && c.done == d_done && !new_fix)
         return;
     d_status = c.status;
+    d_done = c.done;
     if (new_fix)
         d_location = c.location;
     static const char* names[] = { "seeking", "arrived", "located" };
@@ -203,6 +208,7 @@ void seeking_controller_impl::publish_status(const command& c, double time_s)
     s = pmt::dict_add(s, pmt::mp("status"), pmt::mp(names[std::clamp(c.status, 0, 2)]));
     s = pmt::dict_add(s, d_key_slot, pmt::from_uint64(c.slot));
     s = pmt::dict_add(s, d_key_time, pmt::from_double(time_s));
+    s = pmt::dict_add(s, pmt::mp("done"), pmt::from_bool(c.done));
     if (new_fix) {
         d_fix_time = c.location.time_s;
         const emitter_location& l = c.location;
@@ -275,6 +281,12 @@ std::uint64_t seeking_controller_impl::malformed_count() const
 
 namespace gr {
 namespace rfseek {
+
+bool seeking_controller_impl::done() const
+{
+    gr::thread::scoped_lock lock(setlock());
+    return d_done;
+}
 
 int seeking_controller_impl::status() const
 {

@@ -27,6 +27,7 @@ public:
     std::uint64_t invalid_count() const override;
     std::uint64_t malformed_count() const override;
     int status() const override;
+    bool done() const override;
     emitter_location location() const override;
 
 private:
@@ -47,6 +48,7 @@ private:
     void publish_status(const command& c, double time_s);
     int d_status = -1; // last published status (-1: none yet)
     emitter_location d_location;
+    bool d_done = false;
     double d_fix_time = -1.0; // time of the last published fix
 
     const pmt::pmt_t d_port_meas, d_port_nav, d_port_cmd, d_port_telemetry, d_port_status;

@@ -13,6 +13,8 @@
 #include <gr-rfseek/tone_estimator.h>
 #include <cmath>
 #include <memory>
+#include <stdexcept>
+#include <string>
 
 namespace gr {
 namespace rfseek {
@@ -38,6 +40,14 @@ simulation::simulation(const scenario& sc,
 {
     d_sc.validate();
     d_cfg.validate();
+    if (d_sc.self_arrival != d_cfg.self_arrival)
+        throw std::invalid_argument(
+            std::string("scenario.self_arrival = ") +
+            (d_sc.self_arrival ? "true" : "false") +
+            " but seeker_config.self_arrival = " +
+            (d_cfg.self_arrival ? "true" : "false") +
+            ": they must agree (the world ends the run at the seeker's done, or at d_v); "
+            "simulation.seeker_for(scenario, strategy) copies it");
     make_estimator(d_sc, d_est); // fail early on bad estimator settings
 }
 

@@ -118,11 +118,12 @@ struct RFSEEK_API emitter_location {
     double major_angle_rad = 0.0; //!< direction of the major axis (CCW from east)
     double wind_east_mps = 0.0;   //!< estimated wind (nuisance)
     double wind_north_mps = 0.0;
-    double altitude_m = 0.0; //!< estimated height above the emitter (nuisance)
-    double cfo_hz = 0.0;     //!< estimated CFO at time_s
-    double rms_hz = 0.0;     //!< residual RMS of the fit's inliers
-    int used = 0;            //!< measurements in the fit (inliers)
-    double inflation = 1.0;  //!< covariance inflation for correlated residuals
+    double wind_sigma_mps = 0.0; //!< standard error of each wind component
+    double altitude_m = 0.0;     //!< estimated height above the emitter (nuisance)
+    double cfo_hz = 0.0;         //!< estimated CFO at time_s
+    double rms_hz = 0.0;         //!< residual RMS of the fit's inliers
+    int used = 0;                //!< measurements in the fit (inliers)
+    double inflation = 1.0;      //!< covariance inflation for correlated residuals
 };
 
 /*!

@@ -77,7 +77,7 @@ struct RFSEEK_API seeker_config {
     //! Detect the overflight, loiter on an orbit and locate the emitter; false: fly the
     //! strategy only (the paper's runs end at the simulator's d_v).
     bool self_arrival = false;
-    double arrival_swing = 0.8;     //!< frequency drop beyond turns, x f_d,max
+    double arrival_swing = 0.8;     //!< drop beyond turns and drift, x f_d,max (>= 0.5)
     double arrival_window_s = 90.0; //!< the drop must happen within this time
     double arrival_heading_band_rad = 1.0471975511965976; //!< 60 deg spread allowed
     double arrival_power_rise_db = 2.0; //!< power peak over the drop's lower end
@@ -119,9 +119,9 @@ struct RFSEEK_API measurement {
 
 //! The seeker's answer to one measurement.
 struct RFSEEK_API command {
-    std::uint64_t slot = 0;     //!< slot of the measurement answered
-    double heading_rad = 0.0;   //!< heading to fly from now on
-    int stage = 0;              //!< 1 (circle) or 2 (perturbations)
+    std::uint64_t slot = 0;   //!< slot of the measurement answered
+    double heading_rad = 0.0; //!< heading to fly from now on
+    int stage = 0; //!< 1 (circle, acquisition), 2 (perturbations, probes), 3 (loiter)
     double theta_est_rad = 0.0; //!< current estimate of the direction to the emitter
     bool update = false;  //!< a Stage-2 update (eq. 5) or the Stage-1 decision happened
     bool holding = false; //!< holding course for lack of measurements

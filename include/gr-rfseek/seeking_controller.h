@@ -36,9 +36,10 @@ namespace rfseek {
  * by the overflight detector, the loiter orbit and the emitter locator; the cmd then also
  * carries {status (0 seeking, 1 arrived, 2 located), done} (a channel_source whose
  * scenario has self_arrival ends the run at `done`), telemetry carries status, and the
- * "status" port publishes {status: 'seeking' | 'arrived' | 'located', slot, time} at
- * every change, plus for every new fix {east_m, north_m, range_m, bearing_rad (emitter
- * relative to the vehicle, compass frame), dr_x_m, dr_y_m, major_m, minor_m,
+ * "status" port publishes {status: 'seeking' | 'arrived' | 'located', slot, time, done}
+ * at every change of status or done, plus for every new fix {east_m, north_m, range_m,
+ * bearing_rad (emitter relative to the vehicle: x east, y north by its compass; the
+ * angle counter-clockwise from east), dr_x_m, dr_y_m, major_m, minor_m,
  * major_angle_rad (95 % ellipse), wind_east_mps, wind_north_mps, altitude_m, fix_time,
  * rms_hz}. Without self_arrival "status" says 'seeking' once.
  */
@@ -61,6 +62,8 @@ public:
     virtual int status() const = 0;
     //! The latest fix (valid once located).
     virtual emitter_location location() const = 0;
+    //! self_arrival: the mission is over (located, or given up without a fix).
+    virtual bool done() const = 0;
 };
 
 } // namespace rfseek

@@ -13,6 +13,7 @@
 #include <gr-rfseek/seeker.h>
 #include <gr-rfseek/simulation.h>
 #include <gtest/gtest.h>
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -85,8 +86,10 @@ TEST(overflight_detector, far_track_with_fading_turns_and_drift_does_not_trigger
 {
     // 5 km away, flying toward the emitter with the paper's +-10 deg perturbations,
     // Rayleigh-faded power, 5 % invalid measurements and 3 % wild ones; CFO drifting
-    // at the scenario's extreme 0.5 Hz/s either way.
-    for (double drift : { -0.5, 0.5 })
+    // at 0.5 Hz/s (the reference range) and 1.5 Hz/s (135 Hz over the 90 s window: only
+    // the drift correction keeps that from a detection) either way, for 300 s (longer
+    // than window + drift fit).
+    for (double drift : { -1.5, -0.5, 0.5, 1.5 })
         for (std::uint64_t seed = 1; seed <= 5; ++seed) {
             overflight_detector d(detector_cfg());
             rng g(seed, 8, 0);
@@ -105,7 +108,7 @@ TEST(overflight_detector, far_track_with_fading_turns_and_drift_does_not_trigger
                 const bool valid = g.uniform(0.0, 1.0) > 0.05;
                 ASSERT_FALSE(d.update(t, f, p, valid ? 0.0 : -30.0, valid, h))
                     << "drift " << drift << " seed " << seed << " t " << t;
-                if (y > -4000.0)
+                if (y > -2000.0)
                     break;
             }
         }
@@ -113,21 +116,41 @@ TEST(overflight_detector, far_track_with_fading_turns_and_drift_does_not_trigger
 
 TEST(overflight_detector, a_turn_away_far_from_the_emitter_does_not_trigger)
 {
-    // Far away, turn 90 deg (drop f_d,max: explained by the turn) and, separately, a
-    // full about-turn at 30 deg/s (outside the heading band).
-    for (double turn : { M_PI / 2, M_PI }) {
+    // Far away, flying at the emitter, a 50 deg turn away within the heading band (the
+    // drop f_d,max (1 - cos 50 deg) is the turn's) with a 6 dB power bump on the way
+    // (so only the frequency logic stands between it and a detection); and a full
+    // about-turn at 30 deg/s (outside the band).
+    for (double turn : { 50.0 * M_PI / 180.0, M_PI }) {
         overflight_detector d(detector_cfg());
         rng g(3, 9, 0);
         double h = 0.0;
         for (int k = 0; k < 4000; ++k) {
             const double t = k * T;
-            if (t > 60.0)
+            if (t > 150.0)
                 h = std::min(turn, h + 0.5236 * T);
-            const double f = A * std::cos(h) + g.normal();
-            const double p = -74.0 + 3.0 * g.normal();
+            const double f = 40.0 + A * std::cos(h) + g.normal();
+            const double p = -74.0 + 6.0 * std::exp(-std::pow((t - 150.0) / 10.0, 2)) +
+                             0.5 * g.normal();
             ASSERT_FALSE(d.update(t, f, p, 0.0, true, h)) << "turn " << turn;
         }
     }
+    // The same 50 deg track with the frequency falling by 0.9 f_d,max more over 10 s at
+    // the turn (an emitter passed while turning) is detected: the test can fail.
+    overflight_detector d(detector_cfg());
+    rng g(3, 9, 0);
+    double h = 0.0;
+    bool seen = false;
+    for (int k = 0; k < 4000 && !seen; ++k) {
+        const double t = k * T;
+        if (t > 150.0)
+            h = std::min(50.0 * M_PI / 180.0, h + 0.5236 * T);
+        const double extra = 0.9 * A * std::clamp((t - 150.0) / 10.0, 0.0, 1.0);
+        const double f = 40.0 + A * std::cos(h) - extra + g.normal();
+        const double p =
+            -74.0 + 6.0 * std::exp(-std::pow((t - 150.0) / 10.0, 2)) + 0.5 * g.normal();
+        seen = d.update(t, f, p, 0.0, true, h);
+    }
+    EXPECT_TRUE(seen);
 }
 
 TEST(overflight_detector, ignores_unusable_measurements_and_validates)
@@ -233,20 +256,26 @@ TEST(emitter_locator, needs_data_and_skips_non_finite_input)
 TEST(homing_seeker, passes_the_strategy_through_before_arrival)
 {
     // The same run with and without the wrapper: identical headings until arrival is
-    // declared (the world ends at d_v here: oracle).
-    scenario sc;
-    sc.seed = 4;
-    seeker_config plain = simulation::seeker_for(sc, "paper");
-    seeker_config wrapped = plain;
-    wrapped.self_arrival = true;
-    const run_result a = simulation(sc, plain).run(true);
-    const run_result b = simulation(sc, wrapped).run(true);
-    ASSERT_EQ(a.records.size(), b.records.size());
-    for (std::size_t k = 0; k < a.records.size(); ++k) {
+    // declared; the scenario and the seeker must agree on self_arrival.
+    scenario plain_sc;
+    plain_sc.seed = 4;
+    scenario self_sc = plain_sc;
+    self_sc.self_arrival = true;
+    const run_result a =
+        simulation(plain_sc, simulation::seeker_for(plain_sc, "paper")).run(true);
+    const run_result b =
+        simulation(self_sc, simulation::seeker_for(self_sc, "paper")).run(true);
+    ASSERT_TRUE(b.summary.declared);
+    std::size_t k = 0;
+    for (; k < std::min(a.records.size(), b.records.size()); ++k) {
         if (b.records[k].status != 0)
             break;
         ASSERT_EQ(a.records[k].cmd_heading_rad, b.records[k].cmd_heading_rad) << k;
+        ASSERT_EQ(a.records[k].x_m, b.records[k].x_m) << k;
     }
+    EXPECT_GT(k, 10000u); // most of the flight
+    EXPECT_THROW(simulation(plain_sc, simulation::seeker_for(self_sc, "paper")),
+                 std::invalid_argument);
 }
 
 TEST(homing_seeker, declares_arrival_and_locates_in_the_closed_loop)

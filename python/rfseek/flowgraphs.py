@@ -40,7 +40,8 @@ class collector(gr.basic_block):
         if self._every and d["status"] != "seeking":
             self._stream.write("\n  %s at slot %d%s\n" % (
                 d["status"].upper(), d["slot"],
-                ", emitter %.0f m at %.0f deg (95 %% ellipse %.0f x %.0f m)" % (
+                ", emitter %.0f m away at %.0f deg CCW from east (95 %% ellipse %.0f x "
+                "%.0f m)" % (
                     d["range_m"], math.degrees(d["bearing_rad"]), d["major_m"],
                     d["minor_m"]) if "range_m" in d else ""))
             self._stream.flush()

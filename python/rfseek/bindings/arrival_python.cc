@@ -4,7 +4,7 @@
  */
 
 /* BINDTOOL_HEADER_FILE(arrival.h) */
-/* BINDTOOL_HEADER_FILE_HASH(a1842ee93d9547811793f53dbb4fd039) */
+/* BINDTOOL_HEADER_FILE_HASH(3cb2b3e72d6a7147dc1ee3ff1e4caa3f) */
 
 #include <gr-rfseek/arrival.h>
 #include <pybind11/pybind11.h>
@@ -62,6 +62,7 @@ void bind_arrival(py::module& m)
         .def_readonly("major_angle_rad", &emitter_location::major_angle_rad)
         .def_readonly("wind_east_mps", &emitter_location::wind_east_mps)
         .def_readonly("wind_north_mps", &emitter_location::wind_north_mps)
+        .def_readonly("wind_sigma_mps", &emitter_location::wind_sigma_mps)
         .def_readonly("altitude_m", &emitter_location::altitude_m)
         .def_readonly("cfo_hz", &emitter_location::cfo_hz)
         .def_readonly("rms_hz", &emitter_location::rms_hz)

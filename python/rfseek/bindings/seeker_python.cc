@@ -4,7 +4,7 @@
  */
 
 /* BINDTOOL_HEADER_FILE(seeker.h) */
-/* BINDTOOL_HEADER_FILE_HASH(06882d2fcd47ace863bf99c007c54522) */
+/* BINDTOOL_HEADER_FILE_HASH(23cd8ab202f99d516652a86ab4048986) */
 
 #include "kwargs.h"
 #include <gr-rfseek/seeker.h>

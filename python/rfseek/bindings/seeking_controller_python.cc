@@ -4,7 +4,7 @@
  */
 
 /* BINDTOOL_HEADER_FILE(seeking_controller.h) */
-/* BINDTOOL_HEADER_FILE_HASH(748961a8ffcb5a5d72a26bae875fbb18) */
+/* BINDTOOL_HEADER_FILE_HASH(e2b44d625418413a36d0ccbb5df31ff4) */
 
 #include <gr-rfseek/seeking_controller.h>
 #include <pybind11/pybind11.h>
@@ -31,5 +31,8 @@ void bind_seeking_controller(py::module& m)
         .def("invalid_count", &seeking_controller::invalid_count)
         .def("malformed_count", &seeking_controller::malformed_count)
         .def("status", &seeking_controller::status, "0 seeking, 1 arrived, 2 located")
-        .def("location", &seeking_controller::location, "the latest fix");
+        .def("location", &seeking_controller::location, "the latest fix")
+        .def("done",
+             &seeking_controller::done,
+             "self arrival: the mission is over (located, or given up)");
 }

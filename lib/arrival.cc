@@ -6,6 +6,7 @@
  * arrival: the overflight detector and the emitter locator (arrival.h, docs/seeker.md).
  */
 
+#include "angle.h"
 #include <gr-rfseek/arrival.h>
 #include <algorithm>
 #include <array>
@@ -17,12 +18,6 @@ namespace gr {
 namespace rfseek {
 
 namespace {
-
-double wrap_pi(double a)
-{
-    a = std::remainder(a, 2.0 * M_PI);
-    return a <= -M_PI ? a + 2.0 * M_PI : a;
-}
 
 double median(std::vector<double> v)
 {
@@ -210,7 +205,7 @@ void overflight_detector::close_block()
         b.heading_rad = std::atan2(s, c);
         b.heading_lo = b.heading_hi = 0.0;
         for (double h : d_h) {
-            const double dev = wrap_pi(h - b.heading_rad);
+            const double dev = wrap_remainder(h - b.heading_rad);
             b.heading_lo = std::min(b.heading_lo, dev);
             b.heading_hi = std::max(b.heading_hi, dev);
         }
@@ -243,7 +238,7 @@ void overflight_detector::close_block()
             break;
         if (!j.usable)
             continue;
-        const double dpsi = wrap_pi(j.heading_rad - b.heading_rad);
+        const double dpsi = wrap_remainder(j.heading_rad - b.heading_rad);
         lo = std::min(lo, dpsi + j.heading_lo);
         hi = std::max(hi, dpsi + j.heading_hi);
         if (hi - lo > d_cfg.heading_band_rad)

@@ -15,23 +15,17 @@
  *             orbit goes on around the last estimate; no more fits after `done`.
  */
 
+#include "angle.h"
 #include "strategies.h"
 #include <gr-rfseek/arrival.h>
 #include <gr-rfseek/scenario.h>
 #include <algorithm>
 #include <cmath>
-#include <deque>
 
 namespace gr {
 namespace rfseek {
 
 namespace {
-
-double wrap(double a)
-{
-    a = std::remainder(a, 2.0 * M_PI);
-    return a <= -M_PI ? a + 2.0 * M_PI : a;
-}
 
 overflight_config detector_config(const seeker_config& c)
 {
@@ -74,7 +68,7 @@ public:
                 d_last_slot = m.slot;
                 d_last_heading = h;
                 d_heading_cmd = h; // the orbit starts from the heading flown
-                c.heading_rad = wrap(d_heading_cmd + turn_per_slot());
+                c.heading_rad = wrap_remainder(d_heading_cmd + turn_per_slot());
                 d_heading_cmd = c.heading_rad;
                 c.stage = 3;
             }
@@ -118,7 +112,7 @@ private:
                                  : 1;
         d_last_slot = std::max(d_last_slot, m.slot);
         const double h = m.has_heading ? m.heading_rad : d_heading_cmd;
-        const double mean = d_last_heading + 0.5 * wrap(h - d_last_heading);
+        const double mean = d_last_heading + 0.5 * wrap_remainder(h - d_last_heading);
         const double step = d_cfg.speed_mps * d_cfg.slot_period_s * slots;
         d_x += step * std::cos(mean);
         d_y += step * std::sin(mean);
@@ -163,8 +157,9 @@ private:
         }
         if (loitered >= d_cfg.locate_max_orbits * orbit_s())
             d_done = true;
-        d_heading_cmd = d_centred ? orbit_heading(m.time_s)
-                                  : wrap(d_heading_cmd + turn_per_slot() * slots);
+        d_heading_cmd = d_centred
+                            ? orbit_heading(m.time_s)
+                            : wrap_remainder(d_heading_cmd + turn_per_slot() * slots);
         c.heading_rad = d_heading_cmd;
         c.theta_est_rad = theta_est_rad();
         c.status = d_status;

@@ -13,6 +13,8 @@
  *             fits again; a fix with a 95 % ellipse under locate_max_axis_m is
  *             published and `done` set (or after locate_max_orbits without one). The
  *             orbit goes on around the last estimate; no more fits after `done`.
+ *             Without a fix after locate_max_orbits: back to seeking (locate_retry), or
+ *             `done` without a location.
  */
 
 #include "angle.h"
@@ -155,8 +157,22 @@ private:
             }
             d_next_fit_s = loitered + (l.valid ? d_cfg.locate_orbits : 0.25) * orbit_s();
         }
-        if (loitered >= d_cfg.locate_max_orbits * orbit_s())
+        if (!d_done && loitered >= d_cfg.locate_max_orbits * orbit_s()) {
+            if (d_cfg.locate_retry) {
+                // No fix: not the emitter's overflight after all, or too poor a
+                // geometry: seek again (the strategy resumes where it was), detect anew.
+                d_status = 0;
+                d_detector.reset();
+                d_locator.clear();
+                d_centred = false;
+                d_x = d_y = 0.0;
+                d_next_fit_s = d_cfg.locate_orbits * orbit_s();
+                command r = d_inner->update(m);
+                r.status = 0;
+                return r;
+            }
             d_done = true;
+        }
         d_heading_cmd = d_centred
                             ? orbit_heading(m.time_s)
                             : wrap_remainder(d_heading_cmd + turn_per_slot() * slots);

@@ -181,6 +181,7 @@ std::vector<std::string> seeker_config::keys()
              "loiter_radius_m",
              "locate_orbits",
              "locate_max_orbits",
+             "locate_retry",
              "locate_max_axis_m" };
 }
 
@@ -302,6 +303,8 @@ void seeker_config::set(const std::string& key, const std::string& value)
         locate_orbits = number();
     else if (key == "locate_max_orbits")
         locate_max_orbits = number();
+    else if (key == "locate_retry")
+        locate_retry = boolean();
     else if (key == "locate_max_axis_m")
         locate_max_axis_m = number();
     else

@@ -86,7 +86,9 @@ struct RFSEEK_API seeker_config {
     double loiter_radius_m = 50.0;      //!< orbit radius (turn rate v / R, to the left)
     //! Orbits of data before the first location fit (then every quarter orbit).
     double locate_orbits = 1.0;
-    double locate_max_orbits = 3.0; //!< give up (done, not located) after this many
+    //! No fix after this many orbits: seek again (locate_retry) or give up (done).
+    double locate_max_orbits = 3.0;
+    bool locate_retry = true; //!< seek again after locate_max_orbits without a fix
     //! A fix is published (located) when its 95 % ellipse's semi-major axis is below.
     double locate_max_axis_m = 100.0;
 

@@ -305,6 +305,34 @@ TEST(homing_seeker, declares_arrival_and_locates_in_the_closed_loop)
     }
 }
 
+TEST(homing_seeker, without_a_fix_seeks_again_or_gives_up)
+{
+    // A fix can never be good enough (95 % ellipse under 1 mm): with locate_retry the
+    // vehicle goes back to seeking after locate_max_orbits and declares again; without
+    // it, the run ends there, declared and not located.
+    scenario sc;
+    sc.seed = 2;
+    sc.self_arrival = true;
+    sc.flight_cap_m = 8000.0;
+    seeker_config cfg = simulation::seeker_for(sc, "adaptive");
+    cfg.locate_max_axis_m = 1e-3;
+    cfg.locate_retry = false;
+    const run_result give_up = simulation(sc, cfg).run(true);
+    EXPECT_TRUE(give_up.summary.declared);
+    EXPECT_FALSE(give_up.summary.located);
+    EXPECT_LT(give_up.summary.total_distance_m, 8000.0 - 1.0); // ended by done
+    cfg.locate_retry = true;
+    const run_result retry = simulation(sc, cfg).run(true);
+    EXPECT_FALSE(retry.summary.located);
+    int declarations = 0, prev = 0;
+    for (const auto& r : retry.records) {
+        declarations += prev == 0 && r.status == 1;
+        prev = r.status;
+    }
+    EXPECT_GE(declarations, 2); // seeking again after the first loiter, and arriving
+    EXPECT_GT(retry.summary.total_distance_m, give_up.summary.total_distance_m);
+}
+
 TEST(homing_seeker, validates_its_constants)
 {
     seeker_config c;

@@ -4,7 +4,7 @@
  */
 
 /* BINDTOOL_HEADER_FILE(seeker.h) */
-/* BINDTOOL_HEADER_FILE_HASH(23cd8ab202f99d516652a86ab4048986) */
+/* BINDTOOL_HEADER_FILE_HASH(14913b1022ab8bee2356f2ddd40bc667) */
 
 #include "kwargs.h"
 #include <gr-rfseek/seeker.h>
@@ -76,7 +76,8 @@ void bind_seeker(py::module& m)
     RW(arrival_confirm_blocks, "overflight: consecutive blocks with the signature");
     RW(loiter_radius_m, "loiter orbit radius (m), flown to the left");
     RW(locate_orbits, "orbits of data before the first location fit");
-    RW(locate_max_orbits, "give up locating after this many orbits");
+    RW(locate_max_orbits, "no fix after this many orbits: seek again or give up");
+    RW(locate_retry, "seek again after locate_max_orbits without a fix (else done)");
     RW(locate_max_axis_m,
        "publish a fix when its 95 % ellipse semi-major axis is below (m)");
 #undef RW

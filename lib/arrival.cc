@@ -29,30 +29,47 @@ double median(std::vector<double> v)
     return 0.5 * (hi + *std::max_element(v.begin(), v.begin() + n / 2));
 }
 
-//! Solve the n x n system a x = b in place (Gauss-Jordan, partial pivoting).
-template <std::size_t N>
-bool solve(std::array<std::array<double, N>, N> a, std::array<double, N>& b)
+//! Solve the n x n system a x = b in place (Gauss-Jordan, partial pivoting); a is
+//! row-major, b has n entries. False if a is singular.
+bool solve_dense(std::vector<double>& a, std::vector<double>& b)
 {
-    for (std::size_t c = 0; c < N; ++c) {
+    const std::size_t n = b.size();
+    for (std::size_t c = 0; c < n; ++c) {
         std::size_t p = c;
-        for (std::size_t r = c + 1; r < N; ++r)
-            if (std::abs(a[r][c]) > std::abs(a[p][c]))
+        for (std::size_t r = c + 1; r < n; ++r)
+            if (std::abs(a[r * n + c]) > std::abs(a[p * n + c]))
                 p = r;
-        if (!(std::abs(a[p][c]) > 0.0))
+        if (!(std::abs(a[p * n + c]) > 0.0))
             return false;
-        std::swap(a[p], a[c]);
-        std::swap(b[p], b[c]);
-        for (std::size_t r = 0; r < N; ++r) {
+        if (p != c) {
+            std::swap_ranges(
+                a.begin() + p * n, a.begin() + (p + 1) * n, a.begin() + c * n);
+            std::swap(b[p], b[c]);
+        }
+        for (std::size_t r = 0; r < n; ++r) {
             if (r == c)
                 continue;
-            const double f = a[r][c] / a[c][c];
-            for (std::size_t k = c; k < N; ++k)
-                a[r][k] -= f * a[c][k];
+            const double f = a[r * n + c] / a[c * n + c];
+            for (std::size_t k = c; k < n; ++k)
+                a[r * n + k] -= f * a[c * n + k];
             b[r] -= f * b[c];
         }
     }
-    for (std::size_t c = 0; c < N; ++c)
-        b[c] /= a[c][c];
+    for (std::size_t c = 0; c < n; ++c)
+        b[c] /= a[c * n + c];
+    return true;
+}
+
+//! solve_dense for small fixed-size systems.
+template <std::size_t N>
+bool solve(const std::array<std::array<double, N>, N>& a, std::array<double, N>& b)
+{
+    std::vector<double> m(N * N), x(b.begin(), b.end());
+    for (std::size_t r = 0; r < N; ++r)
+        std::copy(a[r].begin(), a[r].end(), m.begin() + r * N);
+    if (!solve_dense(m, x))
+        return false;
+    std::copy(x.begin(), x.end(), b.begin());
     return true;
 }
 
@@ -260,9 +277,29 @@ void overflight_detector::close_block()
 
 // ---------------------------------------------------------------- emitter_locator
 
-emitter_locator::emitter_locator(double wavelength_m, double search_radius_m)
-    : d_lambda(wavelength_m), d_search(search_radius_m)
+emitter_locator::emitter_locator(double wavelength_m,
+                                 double search_radius_m,
+                                 double gust_mps,
+                                 double gust_tau_s,
+                                 double altitude_m,
+                                 double altitude_sigma_m)
+    : d_lambda(wavelength_m),
+      d_search(search_radius_m),
+      d_gust(gust_mps),
+      d_gust_tau(gust_tau_s),
+      d_alt(altitude_m),
+      d_alt_sigma(altitude_sigma_m)
 {
+    if (!(altitude_sigma_m >= 0.0 && altitude_sigma_m <= 1e4))
+        throw std::invalid_argument(
+            "emitter_locator: altitude_sigma_m must be in [0, 1e4] (0: no prior)");
+    if (altitude_sigma_m > 0.0 && !(altitude_m >= 0.0 && altitude_m <= 1e4))
+        throw std::invalid_argument(
+            "emitter_locator: altitude_m must be in [0, 1e4] with a height prior");
+    if (!(gust_mps >= 0.0 && gust_mps <= 50.0))
+        throw std::invalid_argument("emitter_locator: gust_mps must be in [0, 50]");
+    if (!(gust_tau_s >= 0.1 && gust_tau_s <= 3600.0))
+        throw std::invalid_argument("emitter_locator: gust_tau_s must be in [0.1, 3600]");
     if (!(wavelength_m > 0.0) || !std::isfinite(wavelength_m))
         throw std::invalid_argument("emitter_locator: wavelength_m must be > 0");
     if (!(search_radius_m > 0.0) || !std::isfinite(search_radius_m))
@@ -352,6 +389,278 @@ struct problem {
     }
 };
 
+/*
+ * The fit with gusts: the wind is w + g(t), g piecewise linear between knots every
+ * min(tau, 5 s) with a first-order Gauss-Markov prior (std sigma_g per axis,
+ * correlation time tau), so
+ *   r_k = p - w (t_k - t_f) + integral_{t_k}^{t_f} g - q_k,
+ *   f_k = c + d (t_k - t_f) + (v_k + w + g(t_k)) . r_k / (lambda |(r_k, h)|).
+ * The maximum a posteriori (p, w, h, g) by Gauss-Newton with Levenberg damping,
+ * c and d projected out as before, the measurement noise variance s2 weighting the
+ * prior (re-estimated once from the gust fit's residuals). On return p holds the
+ * refined (p, w, h), r the residuals, cov the (p_x, p_y, w_x, w_y) covariance (4 x 4,
+ * row-major, s2 (J^T J + s2 E^T E)^-1 before any inflation).
+ */
+struct gust_fit {
+    const problem& pr;
+    double sigma_g, tau;
+    double h0, sigma_h;                        // height prior (sigma_h 0: none)
+    static constexpr double wind_sigma = 15.0; // mean wind prior, m/s per axis
+    std::size_t K = 0, m = 0;
+    double spacing = 0.0;
+    std::vector<std::size_t> j0; // knot below t_k
+    std::vector<double> u;       // position between knots j0, j0 + 1
+    std::vector<double> B;       // n x K: integral of the hat functions from t_k to t_f
+
+    gust_fit(const problem& p, double sg, double tg, double h, double sh)
+        : pr(p), sigma_g(sg), tau(tg), h0(h), sigma_h(sh)
+    {
+        const std::size_t n = pr.t.size();
+        const double t0 = pr.t.front();
+        spacing = std::min(tau, 5.0);
+        K = sigma_g > 0.0
+                ? std::max<std::size_t>(
+                      2, static_cast<std::size_t>(std::ceil((pr.tf - t0) / spacing)) + 1)
+                : 0;
+        m = 5 + 2 * K;
+        if (K == 0)
+            return;
+        j0.resize(n);
+        u.resize(n);
+        for (std::size_t k = 0; k < n; ++k) {
+            const double x = std::max(0.0, (pr.t[k] - t0) / spacing);
+            const std::size_t j = std::min(static_cast<std::size_t>(x), K - 2);
+            j0[k] = j;
+            u[k] = std::clamp(x - j, 0.0, 1.0);
+        }
+        B.assign(n * K, 0.0);
+        for (std::size_t k = n - 1; k-- > 0;) {
+            const double h = 0.5 * (pr.t[k + 1] - pr.t[k]);
+            std::copy(
+                B.begin() + (k + 1) * K, B.begin() + (k + 2) * K, B.begin() + k * K);
+            B[k * K + j0[k]] += h * (1.0 - u[k]);
+            B[k * K + j0[k] + 1] += h * u[k];
+            B[k * K + j0[k + 1]] += h * (1.0 - u[k + 1]);
+            B[k * K + j0[k + 1] + 1] += h * u[k + 1];
+        }
+    }
+
+    // The model D_k and, if J, its gradient (m entries) at theta.
+    double model(const std::vector<double>& th, std::size_t k, double* J) const
+    {
+        const double* gx = th.data() + 5;
+        const double* gy = gx + K;
+        const double* b = K ? B.data() + k * K : nullptr;
+        double Gx = 0.0, Gy = 0.0;
+        for (std::size_t j = 0; j < K; ++j) {
+            Gx += b[j] * gx[j];
+            Gy += b[j] * gy[j];
+        }
+        const std::size_t j = K ? j0[k] : 0;
+        const double gxk = K ? (1.0 - u[k]) * gx[j] + u[k] * gx[j + 1] : 0.0;
+        const double gyk = K ? (1.0 - u[k]) * gy[j] + u[k] * gy[j + 1] : 0.0;
+        const double dt = pr.t[k] - pr.tf;
+        const double rx = th[0] - th[2] * dt + Gx - pr.x[k];
+        const double ry = th[1] - th[3] * dt + Gy - pr.y[k];
+        const double h = th[4];
+        const double s = std::sqrt(rx * rx + ry * ry + h * h);
+        if (!(s > 0.0)) {
+            if (J)
+                std::fill(J, J + m, 0.0);
+            return 0.0;
+        }
+        const double vx = pr.vx[k] + th[2] + gxk, vy = pr.vy[k] + th[3] + gyk;
+        const double num = vx * rx + vy * ry;
+        const double ls = pr.lambda * s;
+        if (J) {
+            const double s2 = s * s;
+            const double drx = (vx - num * rx / s2) / ls, dry = (vy - num * ry / s2) / ls;
+            const double dvx = rx / ls, dvy = ry / ls;
+            J[0] = drx;
+            J[1] = dry;
+            J[2] = -dt * drx + dvx;
+            J[3] = -dt * dry + dvy;
+            J[4] = -num * h / (ls * s2);
+            for (std::size_t q = 0; q < K; ++q) {
+                J[5 + q] = b[q] * drx;
+                J[5 + K + q] = b[q] * dry;
+            }
+            if (K) {
+                J[5 + j] += (1.0 - u[k]) * dvx;
+                J[5 + j + 1] += u[k] * dvx;
+                J[5 + K + j] += (1.0 - u[k]) * dvy;
+                J[5 + K + j + 1] += u[k] * dvy;
+            }
+        }
+        return num / ls;
+    }
+
+    // The priors at th, each weighted by s2: the gusts' (Gauss-Markov: e_0 = g_0 /
+    // sigma_g, e_j = (g_j - a g_{j-1}) / (sigma_g sqrt(1 - a^2)), a = exp(-spacing /
+    // tau), per axis), the mean wind's (0 +- wind_sigma per axis: keeps a far-field
+    // fit from running off to kilometres and tens of m/s) and the height's (h0 +-
+    // sigma_h). Returns s2 |e|^2; with N and g, adds s2 E^T E to N (upper triangle)
+    // and -s2 E^T e to g.
+    double priors(const std::vector<double>& th,
+                  double s2,
+                  std::vector<double>* N = nullptr,
+                  std::vector<double>* g = nullptr) const
+    {
+        double cost = 0.0;
+        // One whitened residual e = c0 th[q0] + c1 th[q1] - mean (q1 unused if c1 0).
+        auto add =
+            [&](std::size_t q0, double c0, std::size_t q1, double c1, double mean) {
+                const double e = c0 * th[q0] + c1 * th[q1] - mean;
+                cost += s2 * e * e;
+                if (!N)
+                    return;
+                (*N)[q0 * m + q0] += s2 * c0 * c0;
+                (*g)[q0] -= s2 * c0 * e;
+                if (c1 != 0.0) {
+                    (*N)[q1 * m + q1] += s2 * c1 * c1;
+                    (*N)[std::min(q0, q1) * m + std::max(q0, q1)] += s2 * c0 * c1;
+                    (*g)[q1] -= s2 * c1 * e;
+                }
+            };
+        if (K) {
+            const double a = std::exp(-spacing / tau);
+            const double sd = sigma_g * std::sqrt(1.0 - a * a);
+            for (std::size_t ax = 0; ax < 2; ++ax)
+                for (std::size_t j = 0; j < K; ++j) {
+                    const std::size_t q = 5 + ax * K + j;
+                    if (j == 0)
+                        add(q, 1.0 / sigma_g, q, 0.0, 0.0);
+                    else
+                        add(q, 1.0 / sd, q - 1, -a / sd, 0.0);
+                }
+        }
+        add(2, 1.0 / wind_sigma, 2, 0.0, 0.0);
+        add(3, 1.0 / wind_sigma, 3, 0.0, 0.0);
+        if (sigma_h > 0.0)
+            add(4, 1.0 / sigma_h, 4, 0.0, h0 / sigma_h);
+        return cost;
+    }
+
+    // Projected residuals (c + d (t - t_f) over the inliers removed) and, if Jt, the
+    // projected Jacobian of the model (n x m, inlier rows only filled). Returns the
+    // data part of the cost.
+    double residuals(const std::vector<double>& th,
+                     std::vector<double>& r,
+                     std::vector<double>* Jt = nullptr,
+                     double* c_out = nullptr) const
+    {
+        const std::size_t n = pr.t.size();
+        r.assign(n, 0.0);
+        if (Jt)
+            Jt->assign(n * m, 0.0);
+        double s1 = 0, st = 0, stt = 0;
+        for (std::size_t k = 0; k < n; ++k) {
+            r[k] = pr.f[k] - model(th, k, Jt && pr.use[k] ? Jt->data() + k * m : nullptr);
+            if (!pr.use[k])
+                continue;
+            const double dt = pr.t[k] - pr.tf;
+            s1 += 1;
+            st += dt;
+            stt += dt * dt;
+        }
+        const double det = s1 * stt - st * st;
+        // Removes the inliers' best line a + b dt from column v (stride, offset).
+        auto project = [&](double* v, std::size_t stride) -> double {
+            double sy = 0, sty = 0;
+            for (std::size_t k = 0; k < n; ++k)
+                if (pr.use[k]) {
+                    sy += v[k * stride];
+                    sty += (pr.t[k] - pr.tf) * v[k * stride];
+                }
+            const double cc =
+                det > 1e-9 ? (stt * sy - st * sty) / det : sy / std::max(s1, 1.0);
+            const double dd = det > 1e-9 ? (s1 * sty - st * sy) / det : 0.0;
+            for (std::size_t k = 0; k < n; ++k)
+                v[k * stride] -= cc + dd * (pr.t[k] - pr.tf);
+            return cc;
+        };
+        const double cc = project(r.data(), 1);
+        if (c_out)
+            *c_out = cc;
+        if (Jt)
+            for (std::size_t q = 0; q < m; ++q)
+                project(Jt->data() + q, m);
+        double ss = 0.0;
+        for (std::size_t k = 0; k < n; ++k)
+            if (pr.use[k])
+                ss += r[k] * r[k];
+        return ss;
+    }
+
+    // The Gauss-Newton matrix N = J^T J + s2 E^T E (m x m), the step's right-hand side
+    // g = J^T r - s2 E^T e and the residuals r at th; returns the cost.
+    double build(const std::vector<double>& th,
+                 double s2,
+                 std::vector<double>& N,
+                 std::vector<double>& g,
+                 std::vector<double>& r) const
+    {
+        const std::size_t n = pr.t.size();
+        std::vector<double> Jt, e;
+        double cost = residuals(th, r, &Jt);
+        N.assign(m * m, 0.0);
+        g.assign(m, 0.0);
+        for (std::size_t k = 0; k < n; ++k) {
+            if (!pr.use[k])
+                continue;
+            const double* row = Jt.data() + k * m;
+            for (std::size_t p = 0; p < m; ++p) {
+                if (row[p] == 0.0)
+                    continue;
+                g[p] += row[p] * r[k];
+                double* Np = N.data() + p * m;
+                for (std::size_t q = p; q < m; ++q)
+                    Np[q] += row[p] * row[q];
+            }
+        }
+        cost += priors(th, s2, &N, &g);
+        for (std::size_t p = 0; p < m; ++p)
+            for (std::size_t q = 0; q < p; ++q)
+                N[p * m + q] = N[q * m + p];
+        return cost;
+    }
+
+    // Minimises the data cost + s2 |e|^2 from th (Levenberg-Marquardt).
+    void run(std::vector<double>& th, double s2, int max_it) const
+    {
+        std::vector<double> N, g, r, rn;
+        double mu = 1e-3;
+        for (int it = 0; it < max_it; ++it) {
+            const double cost = build(th, s2, N, g, r);
+            bool improved = false;
+            for (int tries = 0; tries < 8 && !improved; ++tries) {
+                std::vector<double> A = N, step = g;
+                for (std::size_t q = 0; q < m; ++q)
+                    A[q * m + q] += mu * (N[q * m + q] + 1e-9);
+                if (!solve_dense(A, step)) {
+                    mu *= 10.0;
+                    continue;
+                }
+                std::vector<double> tn = th;
+                for (std::size_t q = 0; q < m; ++q)
+                    tn[q] += step[q];
+                const double cn = residuals(tn, rn) + priors(tn, s2);
+                if (std::isfinite(cn) && cn < cost) {
+                    const double gain = (cost - cn) / std::max(cost, 1e-12);
+                    th.swap(tn);
+                    mu = std::max(mu / 3.0, 1e-9);
+                    improved = true;
+                    if (gain < 1e-7)
+                        return;
+                } else
+                    mu *= 4.0;
+            }
+            if (!improved)
+                return;
+        }
+    }
+};
+
 } // namespace
 
 emitter_location emitter_locator::fit(double vehicle_x_m, double vehicle_y_m) const
@@ -379,7 +688,7 @@ emitter_location emitter_locator::fit(double vehicle_x_m, double vehicle_y_m) co
     params best{ cx, cy, 0.0, 0.0, 0.0 };
     double best_cost = std::numeric_limits<double>::infinity();
     const double spacing = 30.0;
-    const int m = static_cast<int>(std::ceil(d_search / spacing));
+    const int gm = static_cast<int>(std::ceil(d_search / spacing));
     const double tau2 = 100.0; // (10 Hz)^2: a robust cost for the grid
     // Wind candidates: calm, and 3 and 6 m/s from 8 directions (a strong wind moves the
     // emitter by hundreds of metres in the air frame over an orbit: the fit must start
@@ -388,11 +697,16 @@ emitter_location emitter_locator::fit(double vehicle_x_m, double vehicle_y_m) co
     for (double ws : { 3.0, 6.0 })
         for (int q = 0; q < 8; ++q)
             winds.emplace_back(ws * std::cos(q * M_PI / 4), ws * std::sin(q * M_PI / 4));
+    // Heights: the prior's (at least 10 m: at zero the cost is spiky where the path
+    // passes over a candidate), else low and high.
+    const std::vector<double> heights = d_alt_sigma > 0.0
+                                            ? std::vector<double>{ std::max(d_alt, 10.0) }
+                                            : std::vector<double>{ 10.0, 100.0 };
     for (const auto& wv : winds)
-        for (double h : { 10.0, 100.0 })
-            for (int i = -m; i <= m; ++i)
-                for (int j = -m; j <= m; ++j) {
-                    if (i * i + j * j > m * m)
+        for (double h : heights)
+            for (int i = -gm; i <= gm; ++i)
+                for (int j = -gm; j <= gm; ++j) {
+                    if (i * i + j * j > gm * gm)
                         continue;
                     const params p{
                         cx + i * spacing, cy + j * spacing, wv.first, wv.second, h
@@ -408,69 +722,29 @@ emitter_location emitter_locator::fit(double vehicle_x_m, double vehicle_y_m) co
                 }
     pr.step = 1;
 
-    // Levenberg-Marquardt on the projected residuals, two rounds of outlier rejection.
-    const std::array<double, 5> eps{ 0.05, 0.05, 0.005, 0.005, 0.05 };
-    params p = best;
-    std::vector<double> rj;
-    std::array<std::array<double, 5>, 5> jtj{};
-    std::vector<std::array<double, 5>> jac(n);
-    auto jacobian = [&](const params& at, const std::vector<double>& r0) {
-        for (std::size_t q = 0; q < 5; ++q) {
-            params pp = at;
-            pp[q] += eps[q];
-            pr.residuals(pp, rj);
-            for (std::size_t k = 0; k < n; ++k)
-                jac[k][q] = (rj[k] - r0[k]) / eps[q];
-        }
-        for (auto& row : jtj)
-            row.fill(0.0);
+    // The grid's residual scale weights the priors until a fit gives a better one.
+    pr.residuals(best, r);
+    double s2 = 0.0;
+    {
+        std::vector<double> a;
         for (std::size_t k = 0; k < n; ++k)
-            if (pr.use[k])
-                for (std::size_t a = 0; a < 5; ++a)
-                    for (std::size_t b = 0; b < 5; ++b)
-                        jtj[a][b] += jac[k][a] * jac[k][b];
-    };
-    double cost = 0.0;
+            a.push_back(std::abs(r[k]));
+        s2 = std::pow(std::max(1.4826 * median(a), 0.25), 2);
+    }
+
+    // Constant wind first (maximum a posteriori with the wind and height priors), two
+    // rounds of outlier rejection; then, with a gust prior, the fit with gusts from
+    // there.
+    gust_fit base(pr, 0.0, d_gust_tau, d_alt, d_alt_sigma);
+    std::vector<double> th(best.begin(), best.end());
+    int used = 0;
     for (int round = 0; round < 3; ++round) {
-        double mu = 1e-3;
-        cost = pr.residuals(p, r);
-        for (int it = 0; it < 60; ++it) {
-            jacobian(p, r);
-            std::array<double, 5> g{};
-            for (std::size_t k = 0; k < n; ++k)
-                if (pr.use[k])
-                    for (std::size_t a = 0; a < 5; ++a)
-                        g[a] -= jac[k][a] * r[k];
-            bool improved = false;
-            for (int tries = 0; tries < 10 && !improved; ++tries) {
-                auto a = jtj;
-                for (std::size_t q = 0; q < 5; ++q)
-                    a[q][q] += mu * (jtj[q][q] + 1e-9);
-                std::array<double, 5> step = g;
-                if (!solve(a, step)) {
-                    mu *= 10;
-                    continue;
-                }
-                params pn = p;
-                for (std::size_t q = 0; q < 5; ++q)
-                    pn[q] += step[q];
-                std::vector<double> rn;
-                const double cn = pr.residuals(pn, rn);
-                if (cn < cost) {
-                    const double gain = (cost - cn) / std::max(cost, 1e-12);
-                    p = pn;
-                    r.swap(rn);
-                    cost = cn;
-                    mu = std::max(mu / 3.0, 1e-9);
-                    improved = true;
-                    if (gain < 1e-9)
-                        it = 1000;
-                } else
-                    mu *= 4.0;
-            }
-            if (!improved)
-                break;
-        }
+        base.run(th, s2, 60);
+        const double ss = base.residuals(th, r);
+        used = 0;
+        for (std::size_t k = 0; k < n; ++k)
+            used += pr.use[k] ? 1 : 0;
+        s2 = ss / std::max(used - 7, 1);
         if (round == 2)
             break;
         // Robust sigma of the inliers; reject beyond 4 sigma (at least 1 Hz).
@@ -482,27 +756,49 @@ emitter_location emitter_locator::fit(double vehicle_x_m, double vehicle_y_m) co
         for (std::size_t k = 0; k < n; ++k)
             pr.use[k] = std::abs(r[k]) <= std::max(4.0 * sigma, 1.0);
     }
-
-    // Covariance of (p_x, p_y) from the final Jacobian, inflated for correlated
-    // residuals.
-    double c0 = 0.0, d0 = 0.0;
-    cost = pr.residuals(p, r, &c0, &d0);
-    jacobian(p, r);
-    int used = 0;
+    if (used < 50)
+        return out;
+    std::vector<double> N, g;
+    double c0 = 0.0;
+    std::size_t m = base.m;
+    if (d_gust > 0.0) {
+        // Gusts: weight the prior by the constant-wind fit's residual variance, then
+        // once more by the gust fit's own.
+        gust_fit gf(pr, d_gust, d_gust_tau, d_alt, d_alt_sigma);
+        th.resize(gf.m, 0.0);
+        gf.run(th, s2, 30);
+        s2 = gf.residuals(th, r) / std::max(used - 7, 1);
+        gf.run(th, s2, 30);
+        gf.build(th, s2, N, g, r);
+        gf.residuals(th, r, nullptr, &c0);
+        m = gf.m;
+        out.gust_knots = static_cast<int>(gf.K);
+    } else {
+        base.build(th, s2, N, g, r);
+        base.residuals(th, r, nullptr, &c0);
+    }
+    // The (p_x, p_y, w_x, w_y) block of N^-1 (the covariance is s2 N^-1).
+    std::array<double, 16> cov{};
+    for (std::size_t q = 0; q < 4; ++q) {
+        std::vector<double> A = N, e(m, 0.0);
+        e[q] = 1.0;
+        if (!solve_dense(A, e))
+            return out;
+        for (std::size_t w = 0; w < 4; ++w)
+            cov[w * 4 + q] = e[w];
+    }
+    const params p{ th[0], th[1], th[2], th[3], th[4] };
     double r1 = 0.0, r0 = 0.0, prev = 0.0;
     bool have_prev = false;
     for (std::size_t k = 0; k < n; ++k) {
         if (!pr.use[k])
             continue;
-        ++used;
         r0 += r[k] * r[k];
         if (have_prev)
             r1 += prev * r[k];
         prev = r[k];
         have_prev = true;
     }
-    if (used < 50)
-        return out;
     // Correlated residuals (multipath along the path, gusts) carry less information than
     // their number says: inflate by the larger of the AR(1) factor and the variance
     // ratio of 1 s block means (B var(mean) / var, 1 for white residuals).
@@ -526,20 +822,8 @@ emitter_location emitter_locator::fit(double vehicle_x_m, double vehicle_y_m) co
         if (blocks >= 5 && r0 > 0.0)
             inflation = std::max(inflation, B * (bm2 / blocks) / (r0 / used));
     }
-    const double s2 = cost / std::max(used - 7, 1);
-    // Invert J^T J column by column (a tiny ridge keeps h = 0 invertible).
-    double scale = 0.0;
-    for (std::size_t q = 0; q < 5; ++q)
-        scale = std::max(scale, jtj[q][q]);
-    auto a = jtj;
-    for (std::size_t q = 0; q < 5; ++q)
-        a[q][q] += 1e-9 * scale + 1e-12;
-    std::array<double, 5> e0{ 1, 0, 0, 0, 0 }, e1{ 0, 1, 0, 0, 0 };
-    std::array<double, 5> e2{ 0, 0, 1, 0, 0 }, e3{ 0, 0, 0, 1, 0 };
-    if (!solve(a, e0) || !solve(a, e1) || !solve(a, e2) || !solve(a, e3))
-        return out;
-    const double sxx = s2 * inflation * e0[0], syy = s2 * inflation * e1[1];
-    const double sxy = s2 * inflation * 0.5 * (e0[1] + e1[0]);
+    const double sxx = s2 * inflation * cov[0], syy = s2 * inflation * cov[5];
+    const double sxy = s2 * inflation * 0.5 * (cov[1] + cov[4]);
     const double tr = 0.5 * (sxx + syy);
     const double disc = std::sqrt(0.25 * (sxx - syy) * (sxx - syy) + sxy * sxy);
     const double chi2_95 = 5.991464547107979; // 2 degrees of freedom
@@ -550,7 +834,8 @@ emitter_location emitter_locator::fit(double vehicle_x_m, double vehicle_y_m) co
     out.north_m = p[1] - vehicle_y_m;
     out.wind_east_mps = p[2];
     out.wind_north_mps = p[3];
-    out.wind_sigma_mps = std::sqrt(std::max(0.5 * s2 * inflation * (e2[2] + e3[3]), 0.0));
+    out.wind_sigma_mps =
+        std::sqrt(std::max(0.5 * s2 * inflation * (cov[10] + cov[15]), 0.0));
     out.altitude_m = std::abs(p[4]);
     out.cfo_hz = c0;
     out.rms_hz = std::sqrt(r0 / used);

@@ -51,7 +51,12 @@ public:
         : d_cfg(cfg),
           d_inner(std::move(strategy)),
           d_detector(detector_config(cfg)),
-          d_locator(SPEED_OF_LIGHT / cfg.carrier_hz),
+          d_locator(SPEED_OF_LIGHT / cfg.carrier_hz,
+                    600.0,
+                    cfg.locate_gust_mps,
+                    cfg.locate_gust_tau_s,
+                    cfg.altitude_m,
+                    cfg.locate_altitude_sigma_m),
           d_next_fit_s(cfg.locate_orbits * 2.0 * M_PI * cfg.loiter_radius_m /
                        cfg.speed_mps)
     {

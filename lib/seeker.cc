@@ -130,6 +130,16 @@ void seeker_config::validate() const
         bad("locate_max_orbits", locate_max_orbits, "in [locate_orbits, 1000]");
     if (!(locate_max_axis_m > 0.0) || !std::isfinite(locate_max_axis_m))
         bad("locate_max_axis_m", locate_max_axis_m, "> 0");
+    if (!(locate_gust_mps >= 0.0 && locate_gust_mps <= 50.0))
+        bad("locate_gust_mps", locate_gust_mps, "in [0, 50] m/s");
+    if (!(locate_gust_tau_s >= 0.1 && locate_gust_tau_s <= 3600.0))
+        bad("locate_gust_tau_s", locate_gust_tau_s, "in [0.1, 3600] s");
+    if (!(altitude_m >= 0.0 && altitude_m <= 1e4))
+        bad("altitude_m", altitude_m, "in [0, 1e4] m");
+    if (!(locate_altitude_sigma_m >= 0.0 && locate_altitude_sigma_m <= 1e4))
+        bad("locate_altitude_sigma_m",
+            locate_altitude_sigma_m,
+            "in [0, 1e4] m (0: none)");
     if (initial_heading_rad && !std::isfinite(*initial_heading_rad))
         bad("initial_heading_rad", *initial_heading_rad, "finite");
 }
@@ -182,7 +192,11 @@ std::vector<std::string> seeker_config::keys()
              "locate_orbits",
              "locate_max_orbits",
              "locate_retry",
-             "locate_max_axis_m" };
+             "locate_max_axis_m",
+             "locate_gust_mps",
+             "locate_gust_tau_s",
+             "altitude_m",
+             "locate_altitude_sigma_m" };
 }
 
 void seeker_config::set(const std::string& key, const std::string& value)
@@ -307,6 +321,14 @@ void seeker_config::set(const std::string& key, const std::string& value)
         locate_retry = boolean();
     else if (key == "locate_max_axis_m")
         locate_max_axis_m = number();
+    else if (key == "locate_gust_mps")
+        locate_gust_mps = number();
+    else if (key == "locate_gust_tau_s")
+        locate_gust_tau_s = number();
+    else if (key == "altitude_m")
+        altitude_m = number();
+    else if (key == "locate_altitude_sigma_m")
+        locate_altitude_sigma_m = number();
     else
         throw std::invalid_argument("seeker_config: unknown parameter '" + key + "'");
 }

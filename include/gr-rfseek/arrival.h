@@ -123,6 +123,7 @@ struct RFSEEK_API emitter_location {
     double cfo_hz = 0.0;         //!< estimated CFO at time_s
     double rms_hz = 0.0;         //!< residual RMS of the fit's inliers
     int used = 0;                //!< measurements in the fit (inliers)
+    int gust_knots = 0;          //!< gust states per axis (0: constant wind)
     double inflation = 1.0;      //!< covariance inflation for correlated residuals
 };
 
@@ -141,8 +142,17 @@ struct RFSEEK_API emitter_location {
 class RFSEEK_API emitter_locator
 {
 public:
-    //! wavelength_m: lambda = c / f_c; search_radius_m: grid extent around the path.
-    explicit emitter_locator(double wavelength_m, double search_radius_m = 600.0);
+    //! wavelength_m: lambda = c / f_c; search_radius_m: grid extent around the path;
+    //! gust_mps, gust_tau_s: the gust prior (first-order Gauss-Markov, std per axis and
+    //! correlation time; gust_mps = 0: a constant wind only); altitude_m,
+    //! altitude_sigma_m: the height prior (the vehicle's height above the emitter's
+    //! ground as its altimeter holds it, and that figure's std; sigma 0: fitted freely).
+    explicit emitter_locator(double wavelength_m,
+                             double search_radius_m = 600.0,
+                             double gust_mps = 0.0,
+                             double gust_tau_s = 5.0,
+                             double altitude_m = 0.0,
+                             double altitude_sigma_m = 0.0);
     void add(double time_s,
              double x_m,
              double y_m,
@@ -155,7 +165,7 @@ public:
     emitter_location fit(double vehicle_x_m, double vehicle_y_m) const;
 
 private:
-    double d_lambda, d_search;
+    double d_lambda, d_search, d_gust, d_gust_tau, d_alt, d_alt_sigma;
     std::vector<double> d_t, d_x, d_y, d_vx, d_vy, d_f;
 };
 

@@ -83,7 +83,7 @@ struct RFSEEK_API seeker_config {
     double arrival_power_rise_db = 2.0; //!< power peak over the drop's lower end
     int arrival_block_slots = 40;       //!< slots per median block
     int arrival_confirm_blocks = 2;     //!< consecutive blocks with the signature
-    double loiter_radius_m = 50.0;      //!< orbit radius (turn rate v / R, to the left)
+    double loiter_radius_m = 25.0;      //!< orbit radius (turn rate v / R, to the left)
     //! Orbits of data before the first location fit (then every quarter orbit).
     double locate_orbits = 1.0;
     //! No fix after this many orbits: seek again (locate_retry) or give up (done).
@@ -91,6 +91,15 @@ struct RFSEEK_API seeker_config {
     bool locate_retry = true; //!< seek again after locate_max_orbits without a fix
     //! A fix is published (located) when its 95 % ellipse's semi-major axis is below.
     double locate_max_axis_m = 100.0;
+    //! Gust prior of the location fit: std per axis (m/s; 0: a constant wind only) and
+    //! correlation time (s) of a first-order Gauss-Markov gust (docs/seeker.md).
+    double locate_gust_mps = 1.0;
+    double locate_gust_tau_s = 5.0;
+    //! The vehicle's height above the ground the emitter stands on, as its altimeter /
+    //! autopilot holds it (m); the location fit's prior on the height, with this std
+    //! (m; 0: the height is fitted freely).
+    double altitude_m = 0.0;
+    double locate_altitude_sigma_m = 10.0;
 
     double max_doppler_hz() const;
     double effective_outlier_threshold_hz() const;

@@ -16,6 +16,7 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <vector>
 
 using namespace gr::rfseek;
 
@@ -241,6 +242,78 @@ TEST(emitter_locator, finds_the_emitter_from_an_orbit)
     }
 }
 
+namespace {
+
+/*
+ * Gusty air: two orbits of 25 m flown as a ground circle around a point 18 m from the
+ * emitter (what the loiter does with a first estimate), 100 m up, a 4 m/s mean wind
+ * plus first-order Gauss-Markov gusts (gust_mps per axis, 5 s). The air velocity
+ * (dead reckoning) is the ground velocity minus the wind, so the integrated gust moves
+ * the emitter in the air frame by about 2 sigma sqrt(tau T) = 18 m over the loiter.
+ * Returns the location errors of a locator with (gust_prior, 10 m height prior) for
+ * seeds 0..seeds-1.
+ */
+std::vector<double> gusty_errors(double gust_mps, double gust_prior, int seeds)
+{
+    const double R = 25.0, VG = 10.0, H = 100.0, OX = 15.0, OY = 10.0;
+    const double wx = 3.0, wy = -2.6, tau = 5.0;
+    const double a = std::exp(-T / tau), sd = gust_mps * std::sqrt(1.0 - a * a);
+    std::vector<double> err;
+    for (int seed = 0; seed < seeds; ++seed) {
+        rng g(seed, 11, 0);
+        emitter_locator loc(LAMBDA, 600.0, gust_prior, tau, H, 10.0);
+        const double w = VG / R;
+        const int n = static_cast<int>(2.0 * 2.0 * M_PI / w / T);
+        double gx = gust_mps * g.normal(), gy = gust_mps * g.normal();
+        double qx = 0.0, qy = 0.0, px = 0.0, py = 0.0;
+        for (int k = 0; k <= n; ++k) {
+            const double t = k * T, ang = w * t;
+            px = OX + R * std::sin(ang); // ground track, emitter at the origin
+            py = OY - R * std::cos(ang);
+            const double vgx = VG * std::cos(ang), vgy = VG * std::sin(ang);
+            const double vx = vgx - wx - gx, vy = vgy - wy - gy; // through the air
+            const double s = std::sqrt(px * px + py * py + H * H);
+            const double dop = (vgx * -px + vgy * -py) / (LAMBDA * s);
+            loc.add(t, qx, qy, vx, vy, 500.0 + 0.2 * t + dop + g.normal());
+            if (k < n) {
+                qx += vx * T;
+                qy += vy * T;
+                gx = a * gx + sd * g.normal();
+                gy = a * gy + sd * g.normal();
+            }
+        }
+        const emitter_location l = loc.fit(qx, qy);
+        err.push_back(l.valid ? std::hypot(l.east_m + px, l.north_m + py) : 1e9);
+    }
+    std::sort(err.begin(), err.end());
+    return err;
+}
+
+} // namespace
+
+TEST(emitter_locator, the_gust_prior_tracks_the_air_frame_drift)
+{
+    // With 1 m/s gusts the constant-wind fit (height prior only) misreads the integrated
+    // gust as position; the gust states take it out. In calm air the gust prior costs
+    // little.
+    const int seeds = 20;
+    const auto constant = gusty_errors(1.0, 0.0, seeds);
+    const auto gusts = gusty_errors(1.0, 1.0, seeds);
+    const double med_c = constant[seeds / 2], med_g = gusts[seeds / 2];
+    EXPECT_LT(med_g, 12.0) << "constant-wind median " << med_c;
+    EXPECT_LT(med_g, 0.75 * med_c);
+    EXPECT_LT(gusts[seeds * 9 / 10], 25.0);
+    const auto calm = gusty_errors(0.0, 1.0, seeds);
+    EXPECT_LT(calm[seeds / 2], 3.0);
+    EXPECT_LT(calm[seeds * 9 / 10], 6.0);
+    EXPECT_THROW(emitter_locator(LAMBDA, 600.0, -1.0), std::invalid_argument);
+    EXPECT_THROW(emitter_locator(LAMBDA, 600.0, 1.0, 0.0), std::invalid_argument);
+    EXPECT_THROW(emitter_locator(LAMBDA, 600.0, 1.0, 5.0, NAN, 10.0),
+                 std::invalid_argument);
+    EXPECT_THROW(emitter_locator(LAMBDA, 600.0, 1.0, 5.0, 100.0, -1.0),
+                 std::invalid_argument);
+}
+
 TEST(emitter_locator, needs_data_and_skips_non_finite_input)
 {
     emitter_locator loc(LAMBDA);
@@ -349,5 +422,20 @@ TEST(homing_seeker, validates_its_constants)
         FAIL();
     } catch (const std::invalid_argument& e) {
         EXPECT_NE(std::string(e.what()).find("locate_max_orbits"), std::string::npos);
+    }
+    // The location priors: each names itself.
+    for (const auto& kv : std::vector<std::pair<std::string, std::string>>{
+             { "locate_gust_mps", "-1" },
+             { "locate_gust_tau_s", "0" },
+             { "altitude_m", "-5" },
+             { "locate_altitude_sigma_m", "nan" } }) {
+        c = seeker_config();
+        c.set(kv.first, kv.second);
+        try {
+            c.validate();
+            FAIL() << kv.first;
+        } catch (const std::invalid_argument& e) {
+            EXPECT_NE(std::string(e.what()).find(kv.first), std::string::npos);
+        }
     }
 }

@@ -4,7 +4,7 @@
  */
 
 /* BINDTOOL_HEADER_FILE(arrival.h) */
-/* BINDTOOL_HEADER_FILE_HASH(3cb2b3e72d6a7147dc1ee3ff1e4caa3f) */
+/* BINDTOOL_HEADER_FILE_HASH(9161fc6d9d12c06ff67f2a3b08cc844e) */
 
 #include <gr-rfseek/arrival.h>
 #include <pybind11/pybind11.h>
@@ -67,13 +67,18 @@ void bind_arrival(py::module& m)
         .def_readonly("cfo_hz", &emitter_location::cfo_hz)
         .def_readonly("rms_hz", &emitter_location::rms_hz)
         .def_readonly("used", &emitter_location::used)
-        .def_readonly("inflation", &emitter_location::inflation);
+        .def_readonly("inflation", &emitter_location::inflation)
+        .def_readonly("gust_knots", &emitter_location::gust_knots);
 
     py::class_<emitter_locator>(
         m, "emitter_locator", "The emitter from the Doppler along a dead-reckoned path.")
-        .def(py::init<double, double>(),
+        .def(py::init<double, double, double, double, double, double>(),
              py::arg("wavelength_m"),
-             py::arg("search_radius_m") = 600.0)
+             py::arg("search_radius_m") = 600.0,
+             py::arg("gust_mps") = 0.0,
+             py::arg("gust_tau_s") = 5.0,
+             py::arg("altitude_m") = 0.0,
+             py::arg("altitude_sigma_m") = 0.0)
         .def("add",
              &emitter_locator::add,
              py::arg("time_s"),

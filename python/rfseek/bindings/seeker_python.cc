@@ -4,7 +4,7 @@
  */
 
 /* BINDTOOL_HEADER_FILE(seeker.h) */
-/* BINDTOOL_HEADER_FILE_HASH(14913b1022ab8bee2356f2ddd40bc667) */
+/* BINDTOOL_HEADER_FILE_HASH(eebb414fa0a14701fdd9238667649b5c) */
 
 #include "kwargs.h"
 #include <gr-rfseek/seeker.h>
@@ -80,6 +80,13 @@ void bind_seeker(py::module& m)
     RW(locate_retry, "seek again after locate_max_orbits without a fix (else done)");
     RW(locate_max_axis_m,
        "publish a fix when its 95 % ellipse semi-major axis is below (m)");
+    RW(locate_gust_mps,
+       "location fit: gust prior, std per axis (m/s; 0: a constant wind only)");
+    RW(locate_gust_tau_s, "location fit: gust correlation time (s)");
+    RW(altitude_m,
+       "the vehicle's height above the emitter's ground as its altimeter holds it (m)");
+    RW(locate_altitude_sigma_m,
+       "location fit: std of the height prior (m; 0: the height is fitted freely)");
 #undef RW
     c.def("validate", &seeker_config::validate)
         .def_static("keys", &seeker_config::keys)

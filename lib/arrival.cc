@@ -12,6 +12,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <stdexcept>
 
 namespace gr {
@@ -390,16 +391,16 @@ struct problem {
 };
 
 /*
- * The fit with gusts: the wind is w + g(t), g piecewise linear between knots every
- * min(tau, 5 s) with a first-order Gauss-Markov prior (std sigma_g per axis,
- * correlation time tau), so
+ * The location model with gusts: the wind is w + g(t), g piecewise linear between knots
+ * every min(tau, 5 s) (at most 41 knots) with a first-order Gauss-Markov prior (std
+ * sigma_g per axis, correlation time tau; sigma_g 0: no gust states), so
  *   r_k = p - w (t_k - t_f) + integral_{t_k}^{t_f} g - q_k,
- *   f_k = c + d (t_k - t_f) + (v_k + w + g(t_k)) . r_k / (lambda |(r_k, h)|).
- * The maximum a posteriori (p, w, h, g) by Gauss-Newton with Levenberg damping,
- * c and d projected out as before, the measurement noise variance s2 weighting the
- * prior (re-estimated once from the gust fit's residuals). On return p holds the
- * refined (p, w, h), r the residuals, cov the (p_x, p_y, w_x, w_y) covariance (4 x 4,
- * row-major, s2 (J^T J + s2 E^T E)^-1 before any inflation).
+ *   f_k = c + d (t_k - t_f) + (v_k + w + g(t_k)) . r_k / (lambda |(r_k, h)|),
+ * with priors on the mean wind (0 +- 15 m/s per axis) and the height (h0 +- sigma_h,
+ * sigma_h 0: none). run() finds the maximum a posteriori (p, w, h, g) by Gauss-Newton
+ * with Levenberg damping and an analytic Jacobian, c and d projected out (variable
+ * projection), the priors weighted by the measurement noise variance s2; build() gives
+ * the Gauss-Newton matrix J^T J + s2 E^T E whose inverse times s2 is the covariance.
  */
 struct gust_fit {
     const problem& pr;
@@ -417,7 +418,9 @@ struct gust_fit {
     {
         const std::size_t n = pr.t.size();
         const double t0 = pr.t.front();
-        spacing = std::min(tau, 5.0);
+        // Knots every min(tau, 5 s), at most 41 of them (a bounded cost however long
+        // the loiter).
+        spacing = std::max({ std::min(0.5 * tau, 5.0), (pr.tf - t0) / 40.0, 1e-3 });
         K = sigma_g > 0.0
                 ? std::max<std::size_t>(
                       2, static_cast<std::size_t>(std::ceil((pr.tf - t0) / spacing)) + 1)
@@ -433,16 +436,22 @@ struct gust_fit {
             j0[k] = j;
             u[k] = std::clamp(x - j, 0.0, 1.0);
         }
+        // B_kj = F_j(t_f) - F_j(t_k), F_j the integral of knot j's hat function
+        // max(0, 1 - |t - tau_j| / spacing) from -infinity (exact across any gap).
+        auto F = [&](std::size_t j, double t) {
+            const double x = (t - (t0 + j * spacing)) / spacing;
+            if (x <= -1.0)
+                return 0.0;
+            if (x <= 0.0)
+                return 0.5 * spacing * (x + 1.0) * (x + 1.0);
+            if (x <= 1.0)
+                return spacing * (1.0 - 0.5 * (1.0 - x) * (1.0 - x));
+            return spacing;
+        };
         B.assign(n * K, 0.0);
-        for (std::size_t k = n - 1; k-- > 0;) {
-            const double h = 0.5 * (pr.t[k + 1] - pr.t[k]);
-            std::copy(
-                B.begin() + (k + 1) * K, B.begin() + (k + 2) * K, B.begin() + k * K);
-            B[k * K + j0[k]] += h * (1.0 - u[k]);
-            B[k * K + j0[k] + 1] += h * u[k];
-            B[k * K + j0[k + 1]] += h * (1.0 - u[k + 1]);
-            B[k * K + j0[k + 1] + 1] += h * u[k + 1];
-        }
+        for (std::size_t k = 0; k < n; ++k)
+            for (std::size_t j = 0; j < K; ++j)
+                B[k * K + j] = F(j, pr.tf) - F(j, pr.t[k]);
     }
 
     // The model D_k and, if J, its gradient (m entries) at theta.
@@ -744,7 +753,7 @@ emitter_location emitter_locator::fit(double vehicle_x_m, double vehicle_y_m) co
         used = 0;
         for (std::size_t k = 0; k < n; ++k)
             used += pr.use[k] ? 1 : 0;
-        s2 = ss / std::max(used - 7, 1);
+        s2 = std::max(ss / std::max(used - 7, 1), 0.0625); // at least (0.25 Hz)^2
         if (round == 2)
             break;
         // Robust sigma of the inliers; reject beyond 4 sigma (at least 1 Hz).
@@ -758,35 +767,22 @@ emitter_location emitter_locator::fit(double vehicle_x_m, double vehicle_y_m) co
     }
     if (used < 50)
         return out;
-    std::vector<double> N, g;
     double c0 = 0.0;
-    std::size_t m = base.m;
+    std::unique_ptr<gust_fit> gf;
+    const gust_fit* fin = &base;
     if (d_gust > 0.0) {
         // Gusts: weight the prior by the constant-wind fit's residual variance, then
-        // once more by the gust fit's own.
-        gust_fit gf(pr, d_gust, d_gust_tau, d_alt, d_alt_sigma);
-        th.resize(gf.m, 0.0);
-        gf.run(th, s2, 30);
-        s2 = gf.residuals(th, r) / std::max(used - 7, 1);
-        gf.run(th, s2, 30);
-        gf.build(th, s2, N, g, r);
-        gf.residuals(th, r, nullptr, &c0);
-        m = gf.m;
-        out.gust_knots = static_cast<int>(gf.K);
-    } else {
-        base.build(th, s2, N, g, r);
-        base.residuals(th, r, nullptr, &c0);
+        // once more by the gust fit's own, which also weighs the final covariance.
+        gf = std::make_unique<gust_fit>(pr, d_gust, d_gust_tau, d_alt, d_alt_sigma);
+        th.resize(gf->m, 0.0);
+        gf->run(th, s2, 30);
+        s2 = std::max(gf->residuals(th, r) / std::max(used - 7, 1), 0.0625);
+        gf->run(th, s2, 30);
+        s2 = std::max(gf->residuals(th, r) / std::max(used - 7, 1), 0.0625);
+        out.gust_knots = static_cast<int>(gf->K);
+        fin = gf.get();
     }
-    // The (p_x, p_y, w_x, w_y) block of N^-1 (the covariance is s2 N^-1).
-    std::array<double, 16> cov{};
-    for (std::size_t q = 0; q < 4; ++q) {
-        std::vector<double> A = N, e(m, 0.0);
-        e[q] = 1.0;
-        if (!solve_dense(A, e))
-            return out;
-        for (std::size_t w = 0; w < 4; ++w)
-            cov[w * 4 + q] = e[w];
-    }
+    fin->residuals(th, r, nullptr, &c0);
     const params p{ th[0], th[1], th[2], th[3], th[4] };
     double r1 = 0.0, r0 = 0.0, prev = 0.0;
     bool have_prev = false;
@@ -822,6 +818,27 @@ emitter_location emitter_locator::fit(double vehicle_x_m, double vehicle_y_m) co
         if (blocks >= 5 && r0 > 0.0)
             inflation = std::max(inflation, B * (bm2 / blocks) / (r0 / used));
     }
+    // The covariance (J^T J / (s2 inflation) + priors)^-1 = s2 inflation N^-1, N the
+    // Gauss-Newton matrix with the priors weighted by s2 inflation: the inflation is
+    // the data's, not the priors'. A tiny ridge keeps a zero height (no height prior)
+    // invertible.
+    std::vector<double> N, g, rr;
+    fin->build(th, s2 * inflation, N, g, rr);
+    const std::size_t m = fin->m;
+    double scale = 0.0;
+    for (std::size_t q = 0; q < m; ++q)
+        scale = std::max(scale, N[q * m + q]);
+    for (std::size_t q = 0; q < m; ++q)
+        N[q * m + q] += 1e-9 * scale + 1e-12;
+    std::array<double, 16> cov{}; // (p_x, p_y, w_x, w_y) block of N^-1
+    for (std::size_t q = 0; q < 4; ++q) {
+        std::vector<double> A = N, e(m, 0.0);
+        e[q] = 1.0;
+        if (!solve_dense(A, e))
+            return out;
+        for (std::size_t w = 0; w < 4; ++w)
+            cov[w * 4 + q] = e[w];
+    }
     const double sxx = s2 * inflation * cov[0], syy = s2 * inflation * cov[5];
     const double sxy = s2 * inflation * 0.5 * (cov[1] + cov[4]);
     const double tr = 0.5 * (sxx + syy);
@@ -842,7 +859,9 @@ emitter_location emitter_locator::fit(double vehicle_x_m, double vehicle_y_m) co
     out.used = used;
     out.inflation = inflation;
     out.valid = std::isfinite(out.east_m) && std::isfinite(out.north_m) &&
-                std::isfinite(out.major_m) && std::isfinite(out.minor_m);
+                std::isfinite(out.major_m) && std::isfinite(out.minor_m) &&
+                std::isfinite(out.wind_sigma_mps) && std::isfinite(out.altitude_m) &&
+                std::isfinite(out.cfo_hz);
     return out;
 }
 

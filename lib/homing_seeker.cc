@@ -55,8 +55,9 @@ public:
                     600.0,
                     cfg.locate_gust_mps,
                     cfg.locate_gust_tau_s,
-                    cfg.altitude_m,
-                    cfg.locate_altitude_sigma_m),
+                    std::isnan(cfg.locate_altitude_m) ? 0.0 : cfg.locate_altitude_m,
+                    std::isnan(cfg.locate_altitude_m) ? 0.0
+                                                      : cfg.locate_altitude_sigma_m),
           d_next_fit_s(cfg.locate_orbits * 2.0 * M_PI * cfg.loiter_radius_m /
                        cfg.speed_mps)
     {

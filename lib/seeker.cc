@@ -120,7 +120,8 @@ void seeker_config::validate() const
         bad("arrival_confirm_blocks", arrival_confirm_blocks, "in [1, 1000]");
     if (!(loiter_radius_m >= speed_mps * slot_period_s / M_PI && loiter_radius_m <= 1e5))
         bad("loiter_radius_m", loiter_radius_m, "in [v T_slot / pi, 1e5] m");
-    if (turn_rate_rad_per_s > 0.0 && loiter_radius_m < speed_mps / turn_rate_rad_per_s)
+    if (self_arrival && turn_rate_rad_per_s > 0.0 &&
+        loiter_radius_m < speed_mps / turn_rate_rad_per_s)
         bad("loiter_radius_m",
             loiter_radius_m,
             ">= speed_mps / turn_rate_rad_per_s (an orbit the vehicle can turn)");
@@ -134,8 +135,9 @@ void seeker_config::validate() const
         bad("locate_gust_mps", locate_gust_mps, "in [0, 50] m/s");
     if (!(locate_gust_tau_s >= 0.1 && locate_gust_tau_s <= 3600.0))
         bad("locate_gust_tau_s", locate_gust_tau_s, "in [0.1, 3600] s");
-    if (!(altitude_m >= 0.0 && altitude_m <= 1e4))
-        bad("altitude_m", altitude_m, "in [0, 1e4] m");
+    if (!std::isnan(locate_altitude_m) &&
+        !(locate_altitude_m >= 0.0 && locate_altitude_m <= 1e4))
+        bad("locate_altitude_m", locate_altitude_m, "in [0, 1e4] m, or NaN (unknown)");
     if (!(locate_altitude_sigma_m >= 0.0 && locate_altitude_sigma_m <= 1e4))
         bad("locate_altitude_sigma_m",
             locate_altitude_sigma_m,
@@ -195,7 +197,7 @@ std::vector<std::string> seeker_config::keys()
              "locate_max_axis_m",
              "locate_gust_mps",
              "locate_gust_tau_s",
-             "altitude_m",
+             "locate_altitude_m",
              "locate_altitude_sigma_m" };
 }
 
@@ -325,8 +327,8 @@ void seeker_config::set(const std::string& key, const std::string& value)
         locate_gust_mps = number();
     else if (key == "locate_gust_tau_s")
         locate_gust_tau_s = number();
-    else if (key == "altitude_m")
-        altitude_m = number();
+    else if (key == "locate_altitude_m")
+        locate_altitude_m = number();
     else if (key == "locate_altitude_sigma_m")
         locate_altitude_sigma_m = number();
     else

@@ -59,7 +59,7 @@ seeker_config simulation::seeker_for(const scenario& sc, const std::string& stra
     c.carrier_hz = sc.carrier_hz;
     c.slot_period_s = sc.slot_period_s;
     c.turn_rate_rad_per_s = sc.turn_rate_rad_per_s;
-    c.altitude_m = sc.altitude_m; // the autopilot's altitude hold
+    c.locate_altitude_m = sc.altitude_m; // the autopilot's altitude hold, exact
     c.seed = sc.seed;
     c.self_arrival = sc.self_arrival;
     return c;

@@ -14,6 +14,7 @@
 #include <gr-rfseek/api.h>
 #include <gr-rfseek/arrival.h>
 #include <cstdint>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <string>
@@ -96,9 +97,11 @@ struct RFSEEK_API seeker_config {
     double locate_gust_mps = 1.0;
     double locate_gust_tau_s = 5.0;
     //! The vehicle's height above the ground the emitter stands on, as its altimeter /
-    //! autopilot holds it (m); the location fit's prior on the height, with this std
-    //! (m; 0: the height is fitted freely).
-    double altitude_m = 0.0;
+    //! autopilot holds it (m; NaN: unknown): the location fit's prior on the height,
+    //! with std locate_altitude_sigma_m (m; 0: the height is fitted freely). The
+    //! simulation copies the scenario's altitude_m (a perfect altimeter; set this after
+    //! seeker_for to study a wrong one).
+    double locate_altitude_m = std::numeric_limits<double>::quiet_NaN();
     double locate_altitude_sigma_m = 10.0;
 
     double max_doppler_hz() const;

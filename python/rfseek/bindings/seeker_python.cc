@@ -4,7 +4,7 @@
  */
 
 /* BINDTOOL_HEADER_FILE(seeker.h) */
-/* BINDTOOL_HEADER_FILE_HASH(eebb414fa0a14701fdd9238667649b5c) */
+/* BINDTOOL_HEADER_FILE_HASH(53afd262bbb7a5c535b87993d989a5e0) */
 
 #include "kwargs.h"
 #include <gr-rfseek/seeker.h>
@@ -83,8 +83,9 @@ void bind_seeker(py::module& m)
     RW(locate_gust_mps,
        "location fit: gust prior, std per axis (m/s; 0: a constant wind only)");
     RW(locate_gust_tau_s, "location fit: gust correlation time (s)");
-    RW(altitude_m,
-       "the vehicle's height above the emitter's ground as its altimeter holds it (m)");
+    RW(locate_altitude_m,
+       "location fit: the vehicle's height above the emitter's ground as its altimeter "
+       "holds it (m; NaN: unknown, no height prior)");
     RW(locate_altitude_sigma_m,
        "location fit: std of the height prior (m; 0: the height is fitted freely)");
 #undef RW

@@ -147,6 +147,7 @@ public:
     //! correlation time; gust_mps = 0: a constant wind only); altitude_m,
     //! altitude_sigma_m: the height prior (the vehicle's height above the emitter's
     //! ground as its altimeter holds it, and that figure's std; sigma 0: fitted freely).
+    //! The mean wind always has a weak prior (0 +- 15 m/s per axis).
     explicit emitter_locator(double wavelength_m,
                              double search_radius_m = 600.0,
                              double gust_mps = 0.0,

@@ -4,7 +4,7 @@
  */
 
 /* BINDTOOL_HEADER_FILE(arrival.h) */
-/* BINDTOOL_HEADER_FILE_HASH(9161fc6d9d12c06ff67f2a3b08cc844e) */
+/* BINDTOOL_HEADER_FILE_HASH(700efccfcb284ffee0984082574d9174) */
 
 #include <gr-rfseek/arrival.h>
 #include <pybind11/pybind11.h>

@@ -102,6 +102,8 @@ overflight_detector::overflight_detector(const overflight_config& cfg) : d_cfg(c
         bad("block_slots", "in [1, 100000]");
     if (cfg.confirm_blocks < 1 || cfg.confirm_blocks > 1000)
         bad("confirm_blocks", "in [1, 1000]");
+    if (!(cfg.encircle_amplitude >= 0.0 && cfg.encircle_amplitude <= 1.0))
+        bad("encircle_amplitude", "in [0, 1] (0: off)");
     if (std::isnan(cfg.min_snr_db))
         bad("min_snr_db", "a number");
     reset();
@@ -115,7 +117,10 @@ void overflight_detector::reset()
     d_in_block = 0;
     d_blocks.clear();
     d_hits = 0;
+    d_circle_hits = 0;
     d_detected = false;
+    d_encircled = false;
+    d_last_amplitude = NAN;
     d_detect_time = 0.0;
     d_last_drop = 0.0;
 }
@@ -147,14 +152,18 @@ bool overflight_detector::update(double time_s,
 }
 
 /*
- * The CFO drift up to block b: least squares over the usable blocks of the last drift_s
- * (b included) of F = c + d t + p cos(psi) + q sin(psi), the far-field model (every path
- * from one bearing beta: p = f_d,max cos beta, q = f_d,max sin beta). Turns make p and q
- * identifiable; in steady flight they are collinear with c, and a small ridge keeps the
- * system solvable (the drift is then the plain trend). NaN with fewer than 10 blocks.
+ * The far-field fit up to block b: least squares over the usable blocks of the last
+ * drift_s (b included) of F = c + d t + p cos(psi) + q sin(psi), the far-field model
+ * (every path from one bearing beta: p = f_d,max cos beta, q = f_d,max sin beta). Turns
+ * make p and q identifiable; in steady flight they are collinear with c, and a small
+ * ridge keeps the system solvable (the drift is then the plain trend). The drift is
+ * shrunk toward zero by two standard errors; NaN with fewer than 10 blocks (or half of
+ * drift_s). The amplitude hypot(p, q) is reported when the blocks' headings go all
+ * round (no gap of 120 deg between them), else NaN.
  */
-double overflight_detector::drift_before(const block& b) const
+overflight_detector::far_field overflight_detector::fit_far_field(const block& b) const
 {
+    far_field out{ NAN, NAN };
     std::vector<const block*> w{ &b };
     for (std::size_t i = d_blocks.size(); i-- > 0;) {
         if (b.time_s - d_blocks[i].time_s > d_cfg.drift_s)
@@ -169,6 +178,7 @@ double overflight_detector::drift_before(const block& b) const
     };
     std::array<std::array<double, 4>, 4> a{};
     std::array<double, 4> y{};
+    std::vector<double> headings;
     int used = 0;
     for (const block* q : w) {
         if (!q->usable)
@@ -180,18 +190,19 @@ double overflight_detector::drift_before(const block& b) const
             for (int k = 0; k < 4; ++k)
                 a[i][k] += r[i] * r[k];
         }
+        headings.push_back(q->heading_rad);
         ++used;
     }
     // At least half of drift_s of usable blocks: a short history (the start of a
     // flight, its first manoeuvres) gives no trustworthy drift.
     const double block_s = d_cfg.block_slots * d_cfg.slot_period_s;
     if (used < std::max(10.0, 0.5 * d_cfg.drift_s / block_s))
-        return NAN;
+        return out;
     for (int i = 2; i < 4; ++i)
         a[i][i] += 1e-3 * used;
     std::array<double, 4> x = y, e1{ 0.0, 1.0, 0.0, 0.0 };
     if (!solve(a, x) || !solve(a, e1))
-        return NAN;
+        return out;
     double ss = 0.0;
     for (const block* q : w) {
         if (!q->usable)
@@ -204,7 +215,14 @@ double overflight_detector::drift_before(const block& b) const
     // Shrunk toward zero by two standard errors: an uncertain drift corrects nothing.
     const double se = std::sqrt(std::max(ss / std::max(used - 4, 1), 0.0) * e1[1]);
     const double d = x[1], mag = std::max(std::abs(d) - 2.0 * se, 0.0);
-    return (d < 0.0 ? -mag : mag) / 60.0;
+    out.drift = (d < 0.0 ? -mag : mag) / 60.0;
+    std::sort(headings.begin(), headings.end());
+    double gap = headings.front() + 2.0 * M_PI - headings.back();
+    for (std::size_t i = 1; i < headings.size(); ++i)
+        gap = std::max(gap, headings[i] - headings[i - 1]);
+    if (gap < 2.0 * M_PI / 3.0)
+        out.amplitude = std::hypot(x[2], x[3]);
+    return out;
 }
 
 void overflight_detector::close_block()
@@ -232,7 +250,8 @@ void overflight_detector::close_block()
     d_p.clear();
     d_h.clear();
     d_in_block = 0;
-    b.drift = b.usable ? drift_before(b) : NAN;
+    const far_field ff = b.usable ? fit_far_field(b) : far_field{ NAN, NAN };
+    b.drift = ff.drift;
     d_blocks.push_back(b);
     // Keep the window (and one block more).
     const double keep =
@@ -272,8 +291,20 @@ void overflight_detector::close_block()
     }
     d_last_drop = std::isfinite(best) ? best : 0.0;
     d_hits = best >= d_cfg.swing * a ? d_hits + 1 : 0;
-    if (d_hits >= d_cfg.confirm_blocks)
+    // Encircling: headings all round while the far-field Doppler amplitude has
+    // collapsed (the bearing to the emitter turns with the vehicle).
+    d_last_amplitude = ff.amplitude;
+    d_circle_hits =
+        d_cfg.encircle_amplitude > 0.0 && ff.amplitude < d_cfg.encircle_amplitude * a
+            ? d_circle_hits + 1
+            : 0;
+    if (d_hits >= d_cfg.confirm_blocks) {
         d_detected = true;
+        d_encircled = false;
+    } else if (d_circle_hits >= d_cfg.confirm_blocks) {
+        d_detected = true;
+        d_encircled = true;
+    }
 }
 
 // ---------------------------------------------------------------- emitter_locator

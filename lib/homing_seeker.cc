@@ -41,6 +41,7 @@ overflight_config detector_config(const seeker_config& c)
     o.block_slots = c.arrival_block_slots;
     o.confirm_blocks = c.arrival_confirm_blocks;
     o.min_snr_db = c.min_snr_db;
+    o.encircle_amplitude = c.arrival_encircle;
     return o;
 }
 
@@ -52,7 +53,7 @@ public:
           d_inner(std::move(strategy)),
           d_detector(detector_config(cfg)),
           d_locator(SPEED_OF_LIGHT / cfg.carrier_hz,
-                    600.0,
+                    SEARCH_RADIUS_M,
                     cfg.locate_gust_mps,
                     cfg.locate_gust_tau_s,
                     std::isnan(cfg.locate_altitude_m) ? 0.0 : cfg.locate_altitude_m,
@@ -65,14 +66,18 @@ public:
 
     command update(const measurement& m) override
     {
-        if (d_status == 0) {
+        if (!d_loitering) {
             command c = d_inner->update(m);
             d_heading_cmd = c.heading_rad;
             const double h = m.has_heading ? m.heading_rad : c.heading_rad;
             if (d_detector.update(
                     m.time_s, m.freq_hz, m.power_db, m.snr_db, m.valid, h)) {
-                d_status = 1;
+                d_loitering = true;
+                if (d_cfg.arrival_confirm_m <= 0.0)
+                    d_status = 1; // declared on the overflight alone
                 d_loiter_start = m.time_s;
+                d_deadline_s = d_cfg.locate_max_orbits * orbit_s();
+                d_retargets = 0;
                 d_last_slot = m.slot;
                 d_last_heading = h;
                 d_heading_cmd = h; // the orbit starts from the heading flown
@@ -87,12 +92,14 @@ public:
     }
 
     const seeker_config& config() const override { return d_cfg; }
-    int stage() const override { return d_status == 0 ? d_inner->stage() : 3; }
+    int stage() const override { return d_loitering ? 3 : d_inner->stage(); }
     double theta_est_rad() const override
     {
         if (d_location.valid) // toward the fix, from where the vehicle is now
             return std::atan2(d_location.north_m + d_location.dr_y_m - d_y,
                               d_location.east_m + d_location.dr_x_m - d_x);
+        if (d_centred) // toward the estimate being orbited
+            return std::atan2(d_target_y - d_y, d_target_x - d_x);
         return d_inner->theta_est_rad();
     }
     std::uint64_t updates() const override { return d_inner->updates(); }
@@ -105,6 +112,40 @@ private:
     double orbit_s() const
     {
         return 2.0 * M_PI * d_cfg.loiter_radius_m / d_cfg.speed_mps;
+    }
+
+    // Orbit the estimate l from now on (in the air frame it drifts with minus the
+    // wind). Returns the time to fly to its orbit.
+    double retarget(const emitter_location& l, double t)
+    {
+        d_target_x = d_x + l.east_m;
+        d_target_y = d_y + l.north_m;
+        d_target_t = t;
+        // The wind moves the estimate in the air frame. One orbit determines it
+        // poorly (metres per second of spurious wind, in calm air too, which dragged
+        // the centred orbit hundreds of metres away), so the first estimate is
+        // orbited in the air frame; later ones with the fitted wind shrunk by one
+        // standard error.
+        const double wn = std::hypot(l.wind_east_mps, l.wind_north_mps);
+        double keep =
+            d_centred && wn > 0.0 ? std::max(0.0, 1.0 - l.wind_sigma_mps / wn) : 0.0;
+        // Never steer by a wind the vehicle could not hold an orbit in.
+        if (keep * wn > MAX_WIND_FRACTION * d_cfg.speed_mps)
+            keep = MAX_WIND_FRACTION * d_cfg.speed_mps / wn;
+        d_wind_x = keep * l.wind_east_mps;
+        d_wind_y = keep * l.wind_north_mps;
+        d_centred = true;
+        const double r = std::hypot(l.east_m, l.north_m);
+        return std::max(0.0, r - d_cfg.loiter_radius_m) / d_cfg.speed_mps;
+    }
+
+    // How far the estimate l lies from the one being orbited, carried to now with the
+    // wind l fitted (dead-reckoned frame).
+    double target_offset(const emitter_location& l, double t) const
+    {
+        const double ex = d_target_x - l.wind_east_mps * (t - d_target_t);
+        const double ey = d_target_y - l.wind_north_mps * (t - d_target_t);
+        return std::hypot(d_x + l.east_m - ex, d_y + l.north_m - ey);
     }
 
     command loiter(const measurement& m)
@@ -138,36 +179,60 @@ private:
         c.accepted = usable;
 
         const double loitered = m.time_s - d_loiter_start;
-        if (!d_done && loitered >= d_next_fit_s) {
+        if (d_pending.valid) { // confirmed in the previous slot: publish the fix now
+            d_location = d_pending;
+            d_pending = emitter_location();
+            d_status = 2;
+            d_done = true;
+            c.update = true;
+        } else if (!d_done && loitered >= d_next_fit_s) {
             const emitter_location l = d_locator.fit(d_x, d_y);
-            if (l.valid && l.major_m <= d_cfg.locate_max_axis_m && d_centred) {
-                d_location = l;
-                d_status = 2;
-                d_done = true;
-                c.update = true;
-            } else if (l.valid) {
-                // Orbit the estimate (in the air frame it drifts with minus the wind)
-                // for another orbit, then fit again with everything.
-                d_target_x = d_x + l.east_m;
-                d_target_y = d_y + l.north_m;
-                d_target_t = m.time_s;
-                // The wind moves the estimate in the air frame; one orbit determines it
-                // poorly in calm air, so it is shrunk by two standard errors (else a
-                // spurious wind drags the centred orbit away from the emitter).
-                const double wn = std::hypot(l.wind_east_mps, l.wind_north_mps);
-                const double keep =
-                    wn > 0.0 ? std::max(0.0, 1.0 - 2.0 * l.wind_sigma_mps / wn) : 0.0;
-                d_wind_x = keep * l.wind_east_mps;
-                d_wind_y = keep * l.wind_north_mps;
-                d_centred = true;
+            // A fit is steered by once its ellipse fits in the locator's search area
+            // (one orbit far from the emitter can run off to kilometres).
+            const bool usable = l.valid && l.major_m <= SEARCH_RADIUS_M;
+            double next = usable ? d_cfg.locate_orbits : 0.25;
+            if (usable) {
+                // Arrived once the estimate agrees with the one orbited (carried with
+                // the wind now fitted) and lies by the vehicle; a tight enough fix is
+                // the location.
+                const bool agrees =
+                    d_centred &&
+                    (d_cfg.arrival_confirm_m <= 0.0 ||
+                     (target_offset(l, m.time_s) <= d_cfg.arrival_confirm_m &&
+                      std::hypot(l.east_m, l.north_m) <=
+                          d_cfg.arrival_confirm_m + d_cfg.loiter_radius_m));
+                const double transit = retarget(l, m.time_s);
+                if (agrees) {
+                    const bool fix = l.major_m <= d_cfg.locate_max_axis_m;
+                    if (d_status == 0) { // arrived now; located with the next slot
+                        d_status = 1;
+                        if (fix)
+                            d_pending = l;
+                    } else if (fix) {
+                        d_location = l;
+                        d_status = 2;
+                        d_done = true;
+                        c.update = true;
+                    }
+                } else {
+                    // Fly to the new estimate and orbit it; each move (a few at most)
+                    // extends the time allowed.
+                    next += transit / orbit_s();
+                    if (d_retargets++ < MAX_RETARGETS)
+                        d_deadline_s =
+                            std::max(d_deadline_s,
+                                     loitered + transit +
+                                         (d_cfg.locate_max_orbits - 1.0) * orbit_s());
+                }
             }
-            d_next_fit_s = loitered + (l.valid ? d_cfg.locate_orbits : 0.25) * orbit_s();
+            d_next_fit_s = loitered + next * orbit_s();
         }
-        if (!d_done && loitered >= d_cfg.locate_max_orbits * orbit_s()) {
+        if (!d_done && !d_pending.valid && loitered >= d_deadline_s) {
             if (d_cfg.locate_retry) {
                 // No fix: not the emitter's overflight after all, or too poor a
                 // geometry: seek again (the strategy resumes where it was), detect anew.
                 d_status = 0;
+                d_loitering = false;
                 d_detector.reset();
                 d_locator.clear();
                 d_centred = false;
@@ -232,8 +297,16 @@ private:
     std::unique_ptr<seeker> d_inner;
     overflight_detector d_detector;
     emitter_locator d_locator;
+    static constexpr double SEARCH_RADIUS_M = 600.0; // the locator's grid extent
+    static constexpr double MAX_WIND_FRACTION = 0.6; // of the airspeed
+    static constexpr int MAX_RETARGETS = 6;          // moves of the orbited estimate that
+                                                     // extend the time allowed
     int d_status = 0;
+    bool d_loitering = false; // stage 3: orbiting (checking, arrived or located)
     bool d_done = false;
+    int d_retargets = 0;
+    double d_deadline_s = 0.0;  // loiter time after which the vehicle gives up
+    emitter_location d_pending; // confirmed fix, published with the next slot
     double d_heading_cmd = 0.0, d_last_heading = 0.0, d_loiter_start = 0.0;
     double d_x = 0.0, d_y = 0.0; // dead-reckoned, origin where arrival was declared
     std::uint64_t d_last_slot = 0;

@@ -118,6 +118,10 @@ void seeker_config::validate() const
         bad("arrival_block_slots", arrival_block_slots, "in [1, 100000]");
     if (arrival_confirm_blocks < 1 || arrival_confirm_blocks > 1000)
         bad("arrival_confirm_blocks", arrival_confirm_blocks, "in [1, 1000]");
+    if (!(arrival_encircle >= 0.0 && arrival_encircle <= 1.0))
+        bad("arrival_encircle", arrival_encircle, "in [0, 1] (x f_d,max; 0: off)");
+    if (!(arrival_confirm_m >= 0.0 && arrival_confirm_m <= 1e5))
+        bad("arrival_confirm_m", arrival_confirm_m, "in [0, 1e5] m (0: no confirmation)");
     if (!(loiter_radius_m >= speed_mps * slot_period_s / M_PI && loiter_radius_m <= 1e5))
         bad("loiter_radius_m", loiter_radius_m, "in [v T_slot / pi, 1e5] m");
     if (self_arrival && turn_rate_rad_per_s > 0.0 &&
@@ -190,6 +194,8 @@ std::vector<std::string> seeker_config::keys()
              "arrival_power_rise_db",
              "arrival_block_slots",
              "arrival_confirm_blocks",
+             "arrival_encircle",
+             "arrival_confirm_m",
              "loiter_radius_m",
              "locate_orbits",
              "locate_max_orbits",
@@ -313,6 +319,10 @@ void seeker_config::set(const std::string& key, const std::string& value)
         arrival_block_slots = integer();
     else if (key == "arrival_confirm_blocks")
         arrival_confirm_blocks = integer();
+    else if (key == "arrival_encircle")
+        arrival_encircle = number();
+    else if (key == "arrival_confirm_m")
+        arrival_confirm_m = number();
     else if (key == "loiter_radius_m")
         loiter_radius_m = number();
     else if (key == "locate_orbits")

@@ -40,6 +40,9 @@ struct RFSEEK_API overflight_config {
     int block_slots = 40;       //!< slots per median block (2 s at 50 ms)
     int confirm_blocks = 2;     //!< consecutive blocks the signature must hold
     double min_snr_db = -20.0;  //!< measurements below are not used
+    //! Encircling: detected also when, over drift_s with headings all round, the
+    //! far-field Doppler amplitude stays below this x f_d,max (0: off).
+    double encircle_amplitude = 0.35;
 };
 
 /*!
@@ -56,7 +59,10 @@ struct RFSEEK_API overflight_config {
  * on confirm_blocks consecutive blocks (the second term of the first line is the drop a
  * turn away from the emitter would explain, the third the CFO's own change). Far from
  * the emitter every path has the same Doppler, so the frequency only falls by turning
- * or by CFO drift; passing the emitter flips the Doppler's sign.
+ * or by CFO drift; passing the emitter flips the Doppler's sign. A vehicle circling near
+ * the emitter may never pass it at a steady heading: the encircling signature (headings
+ * all round over drift_s, the fitted amplitude of p cos psi + q sin psi below
+ * encircle_amplitude f_d,max on confirm_blocks consecutive blocks) detects it too.
  */
 class RFSEEK_API overflight_detector
 {
@@ -76,6 +82,11 @@ public:
     double detect_time_s() const { return d_detect_time; }
     //! The largest heading-corrected drop seen in the last block (diagnostics, Hz).
     double last_drop_hz() const { return d_last_drop; }
+    //! The far-field Doppler amplitude fitted at the last block (Hz; NaN while the
+    //! headings do not go all round).
+    double last_amplitude_hz() const { return d_last_amplitude; }
+    //! The detection came from the encircling signature, not an overflight.
+    bool encircled() const { return d_encircled; }
     const overflight_config& config() const { return d_cfg; }
     void reset();
 
@@ -91,8 +102,12 @@ private:
         double heading_hi;
         double drift; // CFO drift fitted up to this block (Hz/s; NaN: unknown)
     };
+    struct far_field {
+        double drift;     // Hz/s, shrunk; NaN: unknown
+        double amplitude; // Hz; NaN: headings not all round
+    };
     void close_block();
-    double drift_before(const block& b) const;
+    far_field fit_far_field(const block& b) const;
 
     overflight_config d_cfg;
     std::vector<double> d_f, d_p, d_h;
@@ -100,7 +115,10 @@ private:
     int d_in_block = 0;
     std::vector<block> d_blocks;
     int d_hits = 0;
+    int d_circle_hits = 0;
     bool d_detected = false;
+    bool d_encircled = false;
+    double d_last_amplitude = 0.0;
     double d_detect_time = 0.0;
     double d_last_drop = 0.0;
 };

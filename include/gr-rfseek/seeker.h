@@ -84,7 +84,13 @@ struct RFSEEK_API seeker_config {
     double arrival_power_rise_db = 2.0; //!< power peak over the drop's lower end
     int arrival_block_slots = 40;       //!< slots per median block
     int arrival_confirm_blocks = 2;     //!< consecutive blocks with the signature
-    double loiter_radius_m = 25.0;      //!< orbit radius (turn rate v / R, to the left)
+    //! Encircling signature: headings all round over 120 s with the far-field Doppler
+    //! amplitude below this x f_d,max (0: off; docs/seeker.md).
+    double arrival_encircle = 0.35;
+    double loiter_radius_m = 25.0; //!< orbit radius (turn rate v / R, to the left)
+    //! Arrival is declared when a location fit falls within this distance of the
+    //! estimate the vehicle orbits (m); 0: declared on the overflight alone.
+    double arrival_confirm_m = 50.0;
     //! Orbits of data before the first location fit (then every quarter orbit).
     double locate_orbits = 1.0;
     //! No fix after this many orbits: seek again (locate_retry) or give up (done).

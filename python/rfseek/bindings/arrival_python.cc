@@ -4,7 +4,7 @@
  */
 
 /* BINDTOOL_HEADER_FILE(arrival.h) */
-/* BINDTOOL_HEADER_FILE_HASH(700efccfcb284ffee0984082574d9174) */
+/* BINDTOOL_HEADER_FILE_HASH(650d54c317f67afae10446e87102c9fa) */
 
 #include <gr-rfseek/arrival.h>
 #include <pybind11/pybind11.h>
@@ -26,13 +26,15 @@ void bind_arrival(py::module& m)
         .def_readwrite("drift_s", &overflight_config::drift_s)
         .def_readwrite("block_slots", &overflight_config::block_slots)
         .def_readwrite("confirm_blocks", &overflight_config::confirm_blocks)
-        .def_readwrite("min_snr_db", &overflight_config::min_snr_db);
+        .def_readwrite("min_snr_db", &overflight_config::min_snr_db)
+        .def_readwrite("encircle_amplitude", &overflight_config::encircle_amplitude);
 
     py::class_<overflight_detector>(
         m,
         "overflight_detector",
         "The overflight signature: the Doppler swings toward -f_d,max at a steady "
-        "heading while the power peaks.")
+        "heading while the power peaks; or the encircling one: headings all round, the "
+        "far-field Doppler amplitude collapsed.")
         .def(py::init<const overflight_config&>(),
              py::arg("config") = overflight_config())
         .def("update",
@@ -46,6 +48,9 @@ void bind_arrival(py::module& m)
         .def_property_readonly("detected", &overflight_detector::detected)
         .def_property_readonly("detect_time_s", &overflight_detector::detect_time_s)
         .def_property_readonly("last_drop_hz", &overflight_detector::last_drop_hz)
+        .def_property_readonly("last_amplitude_hz",
+                               &overflight_detector::last_amplitude_hz)
+        .def_property_readonly("encircled", &overflight_detector::encircled)
         .def("reset", &overflight_detector::reset);
 
     py::class_<emitter_location>(

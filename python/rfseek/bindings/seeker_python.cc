@@ -4,7 +4,7 @@
  */
 
 /* BINDTOOL_HEADER_FILE(seeker.h) */
-/* BINDTOOL_HEADER_FILE_HASH(53afd262bbb7a5c535b87993d989a5e0) */
+/* BINDTOOL_HEADER_FILE_HASH(ca539eed714a431d83e2e9fa31fd6bb0) */
 
 #include "kwargs.h"
 #include <gr-rfseek/seeker.h>
@@ -74,6 +74,12 @@ void bind_seeker(py::module& m)
     RW(arrival_power_rise_db, "overflight: power peak above the drop's lower end (dB)");
     RW(arrival_block_slots, "overflight: slots per median block");
     RW(arrival_confirm_blocks, "overflight: consecutive blocks with the signature");
+    RW(arrival_encircle,
+       "encircling: headings all round over 120 s with the far-field Doppler amplitude "
+       "below this x f_d,max (0: off)");
+    RW(arrival_confirm_m,
+       "arrival is declared when a location fit falls within this distance of the "
+       "estimate orbited, by the vehicle (m; 0: on the overflight alone)");
     RW(loiter_radius_m, "loiter orbit radius (m), flown to the left");
     RW(locate_orbits, "orbits of data before the first location fit");
     RW(locate_max_orbits, "no fix after this many orbits: seek again or give up");

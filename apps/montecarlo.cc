@@ -59,7 +59,8 @@ flown to reach the success radius, per strategy, on the same seeds.
                         --set values apply on top); --preset list shows them
   --sweep KEY=V1,V2,..  repeat the study for each value of one --set key
   --arrival MODE        oracle (default: the run ends at d_v, the paper's table) or self
-                        (the vehicle detects its overflight, loiters and locates the
+                        (the vehicle detects its overflight, loiters, declares its
+                        arrival when its location fit confirms it and locates the
                         emitter; the run ends at its fix; rows get the arrival and
                         location columns; same as --set self_arrival=true)
   --resume              keep the rows already in the CSV (same study: same --set,
@@ -164,6 +165,8 @@ struct row {
     bool arrival = false, declared = false, false_arrival = false, located = false,
          in_ellipse = false;
     double detect_m = 0, loc_err_m = 0, loc_major_m = 0;
+    bool overflight = false;
+    double overflight_m = 0;
     std::string error; // non-empty: the run raised; not in the statistics
 };
 std::string preset_list()
@@ -252,8 +255,9 @@ double fftw_floor_us(int n)
 // Statistics over the rows that ran (error rows are counted apart).
 std::string summary_json(const std::vector<const row*>& rows, double shortest)
 {
-    std::vector<double> d, ratio, s1, detect, loc_err, major;
-    int success = 0, errors = 0, declared = 0, near = 0, false_arr = 0, inside = 0;
+    std::vector<double> d, ratio, s1, detect, loc_err, major, over;
+    int success = 0, errors = 0, declared = 0, near = 0, false_arr = 0, inside = 0,
+        over_near = 0;
     bool arrival = false;
     double t = 0.0;
     for (const row* r : rows) {
@@ -274,6 +278,10 @@ std::string summary_json(const std::vector<const row*>& rows, double shortest)
             near += r->detect_m <= 300.0;
         }
         false_arr += r->false_arrival;
+        if (r->overflight) {
+            over.push_back(r->overflight_m);
+            over_near += r->overflight_m <= 300.0;
+        }
         if (r->located) {
             loc_err.push_back(r->loc_err_m);
             major.push_back(r->loc_major_m);
@@ -307,6 +315,10 @@ std::string summary_json(const std::vector<const row*>& rows, double shortest)
           << ", \"arrival_detect_distance_m_median\": " << jnum(percentile(detect, 0.5))
           << ", \"arrival_detect_distance_m_p90\": " << jnum(percentile(detect, 0.9))
           << ", \"arrival_detect_distance_m_p99\": " << jnum(percentile(detect, 0.99))
+          << ", \"overflight_rate\": " << jnum(over.size() / n)
+          << ", \"overflight_within_300m_rate\": " << jnum(over_near / n)
+          << ", \"overflight_distance_m_median\": " << jnum(percentile(over, 0.5))
+          << ", \"overflight_distance_m_p90\": " << jnum(percentile(over, 0.9))
           << ", \"located_rate\": " << jnum(loc_err.size() / n)
           << ", \"location_error_m_median\": " << jnum(percentile(loc_err, 0.5))
           << ", \"location_error_m_p90\": " << jnum(percentile(loc_err, 0.9))
@@ -341,6 +353,8 @@ void fill(row& r, const run_summary& s)
     r.loc_err_m = s.located ? printed(s.location_error_m) : 0.0;
     r.loc_major_m = s.located ? printed(s.location_major_m) : 0.0;
     r.in_ellipse = s.location_in_ellipse;
+    r.overflight = s.overflight;
+    r.overflight_m = s.overflight ? printed(s.overflight_distance_m) : 0.0;
     r.error.clear();
     r.done = true;
 }
@@ -355,14 +369,15 @@ std::string one_line(std::string s)
 
 struct csv_layout {
     bool by_preset = false, by_sweep = false, by_arrival = false;
-    static constexpr std::size_t arrival_columns = 7;
+    static constexpr std::size_t arrival_columns = 8;
     std::string header() const
     {
         return std::string("seed,strategy") + (by_preset ? ",preset" : "") +
                (by_sweep ? ",sweep_value" : "") +
                ",distance_m,ratio,time_s,success,slots,stage1_heading_error_deg" +
                (by_arrival ? ",declared,arrival_detect_distance_m,false_arrival,located,"
-                             "location_error_m,location_major_m,location_in_ellipse"
+                             "location_error_m,location_major_m,location_in_ellipse,"
+                             "overflight_distance_m"
                            : "") +
                ",error";
     }
@@ -386,9 +401,10 @@ struct csv_layout {
                   << "," << (r.false_arrival ? 1 : 0) << "," << (r.located ? 1 : 0) << ","
                   << (r.located ? jnum(r.loc_err_m) : "") << ","
                   << (r.located ? jnum(r.loc_major_m) : "") << ","
-                  << (r.in_ellipse ? 1 : 0) << ",";
+                  << (r.in_ellipse ? 1 : 0) << ","
+                  << (r.overflight ? jnum(r.overflight_m) : "") << ",";
             else
-                c << ",,,,,,,";
+                c << ",,,,,,,,";
         }
         if (!r.error.empty())
             c << "," << one_line(r.error);
@@ -518,6 +534,8 @@ std::size_t load_rows(const std::string& csv,
                     r.loc_err_m = r.located ? num("location_error", c[a + 4]) : 0.0;
                     r.loc_major_m = r.located ? num("location_major", c[a + 5]) : 0.0;
                     r.in_ellipse = c[a + 6] == "1";
+                    r.overflight = !c[a + 7].empty();
+                    r.overflight_m = r.overflight ? num("overflight", c[a + 7]) : 0.0;
                 }
             }
             r.done = true;
@@ -887,11 +905,13 @@ int main(int argc, char** argv)
             row& r = rows[j];
             if (kind == "ROW") {
                 run_summary s;
-                int success = 0, has1 = 0, arr = 0, decl = 0, fa = 0, loc = 0, in = 0;
+                int success = 0, has1 = 0, arr = 0, decl = 0, fa = 0, loc = 0, in = 0,
+                    over = 0;
                 ss >> s.distance_m >> s.ratio >> s.time_s >> success >> s.slots >> has1 >>
                     s.stage1_heading_error_rad >> arr >> decl >>
                     s.arrival_detect_distance_m >> fa >> loc >> s.location_error_m >>
-                    s.location_major_m >> in;
+                    s.location_major_m >> in >> over >> s.overflight_distance_m;
+                s.overflight = over;
                 s.success = success;
                 s.has_stage1 = has1;
                 s.self_arrival = arr;
@@ -1053,7 +1073,9 @@ int main(int argc, char** argv)
               << ", \"located\": " << (r.located ? "true" : "false")
               << ", \"location_error_m\": " << (r.located ? jnum(r.loc_err_m) : "null")
               << ", \"location_major_m\": " << (r.located ? jnum(r.loc_major_m) : "null")
-              << ", \"location_in_ellipse\": " << (r.in_ellipse ? "true" : "false");
+              << ", \"location_in_ellipse\": " << (r.in_ellipse ? "true" : "false")
+              << ", \"overflight_distance_m\": "
+              << (r.overflight ? jnum(r.overflight_m) : "null");
         j << "}" << (i + 1 < rows.size() ? "," : "") << "\n";
     }
     // "summary": the last point's (the only one without presets or a sweep).

@@ -97,6 +97,10 @@ run_result simulation::run(bool keep_records) const
         }
         prev_stage = c.stage;
         run_summary& sm = r.summary;
+        if (c.stage == 3 && d_sc.self_arrival && !sm.overflight) {
+            sm.overflight = true;
+            sm.overflight_distance_m = w.distance_m();
+        }
         if (c.status >= 1 && !sm.declared) {
             sm.declared = true;
             sm.arrival_time_s = w.time_s();

@@ -68,7 +68,12 @@ struct RFSEEK_API run_summary {
     // Arrival without truth (scenario::self_arrival; docs/seeker.md). In that mode
     // distance_m, ratio and success are taken when d_v was first reached.
     bool self_arrival = false;
-    bool declared = false; //!< the vehicle declared its arrival (overflight)
+    //! The overflight (or encircling) signature was first seen (the loiter began).
+    bool overflight = false;
+    double overflight_distance_m = 0.0; //!< true horizontal distance then
+    //! The vehicle declared its arrival (seeker_config::arrival_confirm_m: when a
+    //! location fit confirmed it; 0: at the overflight).
+    bool declared = false;
     double arrival_time_s = 0.0;
     double arrival_detect_distance_m = 0.0; //!< true horizontal distance then
     bool false_arrival = false;             //!< declared more than 1 km away

@@ -50,12 +50,12 @@ def run_chunk(spec, strategy, jobs):
     for job, seed in jobs:
         try:
             s = p.run(strategy, int(seed))
-            out.append("ROW %d %r %r %r %d %d %d %r %d %d %r %d %d %r %r %d" % (
+            out.append("ROW %d %r %r %r %d %d %d %r %d %d %r %d %d %r %r %d %d %r" % (
                 job, s.distance_m, s.ratio, s.time_s, int(s.success), s.slots,
                 int(s.has_stage1), s.stage1_heading_error_rad, int(s.self_arrival),
                 int(s.declared), s.arrival_detect_distance_m, int(s.false_arrival),
                 int(s.located), s.location_error_m, s.location_major_m,
-                int(s.location_in_ellipse)))
+                int(s.location_in_ellipse), int(s.overflight), s.overflight_distance_m))
         except Exception as e:  # a run that raises is a row with its error
             out.append("ERR %d %s: %s" % (job, type(e).__name__, " ".join(str(e).split())))
     return out

@@ -112,15 +112,22 @@ class state_to_nav(gr.basic_block):
         self.message_port_pub(pmt.intern("nav"), pmt.to_pmt({"heading": h}))
 
 
-def arrival_summary(states, status):
+def arrival_summary(states, status, telemetry=None):
     """The arrival and location figures of a self_arrival flight from closed_loop's
     collected 'state' (truth) and 'status' messages, as rfseek.simulation's run_summary
     computes them: declared, arrival_detect_distance_m (true horizontal distance at the
     declaration), false_arrival (> 1 km), located, location (the first fix: east_m,
     north_m relative to the vehicle, major_m, minor_m, major_angle_rad), the vehicle's
-    true position then, location_error_m and location_in_ellipse."""
+    true position then, location_error_m and location_in_ellipse. With the
+    'telemetry' messages: overflight and overflight_distance_m (where the loiter, stage
+    3, first began)."""
     by_slot = {int(s["slot"]): s for s in states}
     out = {"declared": False, "located": False}
+    if telemetry is not None:
+        loiter = next((t for t in telemetry if t["stage"] == 3), None)
+        out["overflight"] = loiter is not None and int(loiter["slot"]) in by_slot
+        if out["overflight"]:
+            out["overflight_distance_m"] = by_slot[int(loiter["slot"])]["distance"]
     arrived = next((m for m in status if m["status"] in ("arrived", "located")), None)
     if arrived is not None and int(arrived["slot"]) in by_slot:
         st = by_slot[int(arrived["slot"])]

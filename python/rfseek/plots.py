@@ -50,8 +50,8 @@ def columns_from_result(result, world_power_db=None):
 
 def trajectory_figure(col, scatterers_xy=None, title=None, path=None, arrival=None):
     """Fig. 5: emitter, scatterers, start, path with the stages marked. arrival (from
-    flowgraphs.arrival_summary, a self_arrival flight): the loiter, where arrival was
-    declared, the estimated emitter and its 95 % ellipse."""
+    flowgraphs.arrival_summary, a self_arrival flight): the loiter from the overflight,
+    where arrival was declared, the estimated emitter and its 95 % ellipse."""
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
@@ -69,7 +69,7 @@ def trajectory_figure(col, scatterers_xy=None, title=None, path=None, arrival=No
         x, y, stage = col["x_m"], col["y_m"], col["stage"]
         for st, colour, label in ((1, "tab:orange", "stage 1 (circle)"),
                                   (2, "tab:blue", "stage 2 (perturbations)"),
-                                  (3, "tab:green", "loiter (arrival declared)")):
+                                  (3, "tab:green", "loiter (from the overflight)")):
             sel = stage == st
             if sel.any():
                 xs, ys = x.astype(float).copy(), y.astype(float).copy()
@@ -81,11 +81,14 @@ def trajectory_figure(col, scatterers_xy=None, title=None, path=None, arrival=No
             ax.plot(*col["end_xy"], "bs", ms=6, label="end")
         ax.add_patch(matplotlib.patches.Circle((0, 0), 200, fill=False, ls="--", color="r",
                                                label="d_v"))
+        if arrival and (stage == 3).any():
+            k = int(np.argmax(stage == 3))
+            ax.plot(x[k], y[k], "c^", ms=8, label="overflight seen (%.0f m)"
+                    % np.hypot(x[k], y[k]))
         if arrival and arrival.get("declared"):
-            k = int(np.argmax(stage == 3)) if (stage == 3).any() else None
-            if k is not None:
-                ax.plot(x[k], y[k], "mv", ms=8, label="arrival declared (%.0f m)"
-                        % arrival["arrival_detect_distance_m"])
+            k = min(int(arrival["arrival_slot"]), len(x) - 1)
+            ax.plot(x[k], y[k], "mv", ms=8, label="arrival declared (%.0f m)"
+                    % arrival["arrival_detect_distance_m"])
         if arrival and arrival.get("located"):
             ex, ey = arrival["estimated_emitter_xy"]
             loc = arrival["location"]

@@ -4,7 +4,7 @@
  */
 
 /* BINDTOOL_HEADER_FILE(simulation.h) */
-/* BINDTOOL_HEADER_FILE_HASH(95e9f46355bdcf791f0110b1d9afc959) */
+/* BINDTOOL_HEADER_FILE_HASH(f43971c9628eb535aae18b683a706d9d) */
 
 #include <gr-rfseek/simulation.h>
 #include <pybind11/numpy.h>
@@ -47,6 +47,8 @@ void bind_simulation(py::module& m)
         .def_readonly("stage1_heading_error_rad", &run_summary::stage1_heading_error_rad)
         .def_readonly("updates", &run_summary::updates)
         .def_readonly("self_arrival", &run_summary::self_arrival)
+        .def_readonly("overflight", &run_summary::overflight)
+        .def_readonly("overflight_distance_m", &run_summary::overflight_distance_m)
         .def_readonly("declared", &run_summary::declared)
         .def_readonly("arrival_time_s", &run_summary::arrival_time_s)
         .def_readonly("arrival_detect_distance_m",

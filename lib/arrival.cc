@@ -264,6 +264,8 @@ void overflight_detector::close_block()
     d_last_drop = 0.0;
     if (!b.usable) {
         d_hits = 0;
+        d_circle_hits = 0;
+        d_last_amplitude = NAN;
         return;
     }
     const double a = d_cfg.max_doppler_hz;

@@ -5,16 +5,21 @@
  *
  * homing_seeker: any strategy, plus what a vehicle without GPS decides by itself near
  * the emitter (seeker_config::self_arrival, docs/seeker.md "Arrival and location"):
- *   seeking   the strategy steers; the overflight detector watches its measurements;
- *   arrived   the overflight was seen: orbit to the left at v / loiter_radius_m, dead-
- *             reckon the path (measured heading x airspeed) and collect the frequencies;
- *   located   after locate_orbits orbits the emitter_locator fits the emitter; the
- *             vehicle orbits that estimate (wind triangle) for locate_orbits more and
- *             fits again; a fix with a 95 % ellipse under locate_max_axis_m is
- *             published and `done` set (or after locate_max_orbits without one). The
- *             orbit goes on around the last estimate; no more fits after `done`.
- *             Without a fix after locate_max_orbits: back to seeking (locate_retry), or
- *             `done` without a location.
+ *   seeking   the strategy steers; the overflight detector watches its measurements.
+ *             Once it fires (stage 3, still seeking): orbit to the left at v /
+ *             loiter_radius_m, dead-reckon the path (measured heading x airspeed) and
+ *             collect the frequencies; after locate_orbits orbits the emitter_locator
+ *             fits the emitter; fly to the estimate, orbit it (wind triangle) and fit
+ *             again after the transit plus locate_orbits orbits; each fit is the next
+ *             estimate orbited;
+ *   arrived   a fit agrees within arrival_confirm_m with the estimate orbited and lies
+ *             by the vehicle (arrival_confirm_m = 0: arrived when the detector fires);
+ *   located   a fix with a 95 % ellipse under locate_max_axis_m is published (the slot
+ *             after arrived at the earliest) and `done` set. The orbit goes on around
+ *             the last estimate; no more fits after `done`.
+ *   Without a fix after locate_max_orbits (extended by each move of the estimate, six
+ *   at most, and by the arrival): back to seeking (locate_retry), or `done` without a
+ *   location.
  */
 
 #include "angle.h"
@@ -139,6 +144,15 @@ private:
         return std::max(0.0, r - d_cfg.loiter_radius_m) / d_cfg.speed_mps;
     }
 
+    // After a move of the estimate (transit: the time to get to its orbit) or the
+    // arrival: locate_max_orbits - 1 more orbits, and at least one more fit.
+    void extend_deadline(double loitered, double transit)
+    {
+        const double orbits =
+            std::max(d_cfg.locate_max_orbits - 1.0, d_cfg.locate_orbits + 0.25);
+        d_deadline_s = std::max(d_deadline_s, loitered + transit + orbits * orbit_s());
+    }
+
     // How far the estimate l lies from the one being orbited, carried to now with the
     // wind l fitted (dead-reckoned frame).
     double target_offset(const emitter_location& l, double t) const
@@ -208,6 +222,8 @@ private:
                         d_status = 1;
                         if (fix)
                             d_pending = l;
+                        else // time for more fits around this estimate
+                            extend_deadline(loitered, 0.0);
                     } else if (fix) {
                         d_location = l;
                         d_status = 2;
@@ -219,10 +235,7 @@ private:
                     // extends the time allowed.
                     next += transit / orbit_s();
                     if (d_retargets++ < MAX_RETARGETS)
-                        d_deadline_s =
-                            std::max(d_deadline_s,
-                                     loitered + transit +
-                                         (d_cfg.locate_max_orbits - 1.0) * orbit_s());
+                        extend_deadline(loitered, transit);
                 }
             }
             d_next_fit_s = loitered + next * orbit_s();

@@ -130,7 +130,7 @@ struct RFSEEK_API emitter_location {
     double east_m = 0.0;          //!< emitter relative to the vehicle at time_s
     double north_m = 0.0;         //!< (x east, y north, compass frame)
     double dr_x_m = 0.0;          //!< vehicle in the dead-reckoned frame (origin:
-    double dr_y_m = 0.0;          //!<  where arrival was declared)
+    double dr_y_m = 0.0;          //!<  where the loiter began)
     double major_m = 0.0;         //!< 95 % uncertainty ellipse: semi-major axis
     double minor_m = 0.0;         //!< semi-minor axis
     double major_angle_rad = 0.0; //!< direction of the major axis (CCW from east)

@@ -93,7 +93,8 @@ struct RFSEEK_API seeker_config {
     double arrival_confirm_m = 50.0;
     //! Orbits of data before the first location fit (then every quarter orbit).
     double locate_orbits = 1.0;
-    //! No fix after this many orbits: seek again (locate_retry) or give up (done).
+    //! No fix after this many orbits (extended by each move of the estimate and by the
+    //! arrival): seek again (locate_retry) or give up (done).
     double locate_max_orbits = 3.0;
     bool locate_retry = true; //!< seek again after locate_max_orbits without a fix
     //! A fix is published (located) when its 95 % ellipse's semi-major axis is below.

@@ -501,6 +501,37 @@ TEST(homing_seeker, without_a_fix_seeks_again_or_gives_up)
     }
     EXPECT_GE(declarations, 2); // seeking again after the first loiter, and arriving
     EXPECT_GT(retry.summary.total_distance_m, give_up.summary.total_distance_m);
+    // An arrival, once confirmed, is given locate_max_orbits - 1 more orbits of fits
+    // before the vehicle seeks again.
+    const double orbit_s = 2.0 * M_PI * cfg.loiter_radius_m / cfg.speed_mps;
+    double arrived_at = -1.0;
+    prev = 0;
+    int withdrawn = 0;
+    for (const auto& r : retry.records) {
+        if (prev == 0 && r.status == 1)
+            arrived_at = r.time_s;
+        if (prev == 1 && r.status == 0) {
+            ++withdrawn;
+            EXPECT_GE(r.time_s - arrived_at, (cfg.locate_max_orbits - 1.0) * orbit_s);
+        }
+        prev = r.status;
+    }
+    EXPECT_GE(withdrawn, 1);
+}
+
+TEST(homing_seeker, arrives_with_the_shortest_loiter_allowed)
+{
+    // locate_max_orbits = locate_orbits: the time allowed after each move still holds
+    // one more fit, so the check can confirm the arrival (reference, seed 2).
+    scenario sc;
+    sc.seed = 2;
+    sc.self_arrival = true;
+    seeker_config cfg = simulation::seeker_for(sc, "adaptive");
+    cfg.locate_max_orbits = cfg.locate_orbits;
+    const run_summary s = simulation(sc, cfg).run().summary;
+    EXPECT_TRUE(s.declared);
+    EXPECT_LT(s.arrival_detect_distance_m, 100.0);
+    EXPECT_TRUE(s.located);
 }
 
 TEST(homing_seeker, validates_its_constants)

@@ -11,7 +11,7 @@ strategy, a range of seeds) to the workers and prints one line per run as chunks
 
     ROW <job> <distance_m> <ratio> <time_s> <success> <slots> <has_stage1> <stage1_rad>
         <self_arrival> <declared> <detect_m> <false_arrival> <located> <loc_error_m>
-        <loc_major_m> <in_ellipse>
+        <loc_major_m> <in_ellipse> <overflight> <overflight_distance_m>
     ERR <job> <message>
 
 Each worker runs ``study_point.run(strategy, seed)``, the C++ core through the bindings,

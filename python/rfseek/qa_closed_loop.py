@@ -72,8 +72,10 @@ class qa_closed_loop(gr_unittest.TestCase):
         self.assertTrue(states[-1]["ended"])
         self.assertTrue(states[-1]["reached"])
         self.assertEqual(tb.controller.status(), 2)
-        a = flowgraphs.arrival_summary(states, status)
+        a = flowgraphs.arrival_summary(states, status, tel)
         s = core.summary
+        self.assertTrue(a["overflight"] and s.overflight)
+        self.assertAlmostEqual(a["overflight_distance_m"], s.overflight_distance_m)
         self.assertTrue(a["declared"] and s.declared)
         self.assertAlmostEqual(a["arrival_detect_distance_m"], s.arrival_detect_distance_m)
         self.assertTrue(a["located"] and s.located)

@@ -4,7 +4,7 @@
  */
 
 /* BINDTOOL_HEADER_FILE(arrival.h) */
-/* BINDTOOL_HEADER_FILE_HASH(650d54c317f67afae10446e87102c9fa) */
+/* BINDTOOL_HEADER_FILE_HASH(5568a544fd9e5f698fb3b8484109fa70) */
 
 #include <gr-rfseek/arrival.h>
 #include <pybind11/pybind11.h>

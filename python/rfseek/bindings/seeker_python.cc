@@ -4,7 +4,7 @@
  */
 
 /* BINDTOOL_HEADER_FILE(seeker.h) */
-/* BINDTOOL_HEADER_FILE_HASH(ca539eed714a431d83e2e9fa31fd6bb0) */
+/* BINDTOOL_HEADER_FILE_HASH(f96607e33db563a4d0a11ba9649d8b03) */
 
 #include "kwargs.h"
 #include <gr-rfseek/seeker.h>
@@ -82,7 +82,9 @@ void bind_seeker(py::module& m)
        "estimate orbited, by the vehicle (m; 0: on the overflight alone)");
     RW(loiter_radius_m, "loiter orbit radius (m), flown to the left");
     RW(locate_orbits, "orbits of data before the first location fit");
-    RW(locate_max_orbits, "no fix after this many orbits: seek again or give up");
+    RW(locate_max_orbits,
+       "no fix after this many orbits (extended by each move of the estimate and by the "
+       "arrival): seek again or give up");
     RW(locate_retry, "seek again after locate_max_orbits without a fix (else done)");
     RW(locate_max_axis_m,
        "publish a fix when its 95 % ellipse semi-major axis is below (m)");

@@ -90,7 +90,7 @@ struct RFSEEK_API seeker_config {
     double loiter_radius_m = 25.0; //!< orbit radius (turn rate v / R, to the left)
     //! Arrival is declared when a location fit falls within this distance of the
     //! estimate the vehicle orbits (m); 0: declared on the overflight alone.
-    double arrival_confirm_m = 50.0;
+    double arrival_confirm_m = 30.0;
     //! Orbits of data before the first location fit (then every quarter orbit).
     double locate_orbits = 1.0;
     //! No fix after this many orbits (extended by each move of the estimate and by the

@@ -451,7 +451,7 @@ TEST(homing_seeker, a_far_overflight_is_confirmed_only_by_the_emitter)
     sc.seed = 144;
     sc.self_arrival = true;
     seeker_config cfg = simulation::seeker_for(sc, "paper");
-    for (double confirm : { 50.0, 0.0 }) {
+    for (double confirm : { 30.0, 0.0 }) {
         cfg.arrival_confirm_m = confirm;
         const run_result r = simulation(sc, cfg).run(true);
         const slot_record* loiter = nullptr;

@@ -4,7 +4,7 @@
  */
 
 /* BINDTOOL_HEADER_FILE(seeker.h) */
-/* BINDTOOL_HEADER_FILE_HASH(f96607e33db563a4d0a11ba9649d8b03) */
+/* BINDTOOL_HEADER_FILE_HASH(715fff67a64228542795162e50cb279e) */
 
 #include "kwargs.h"
 #include <gr-rfseek/seeker.h>

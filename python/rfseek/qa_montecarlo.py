@@ -139,9 +139,10 @@ class qa_montecarlo(gr_unittest.TestCase):
     def test_arrival_self_realistic(self):
         # Under realistic (100 m up, 4 m/s wind with 1 m/s gusts, compass error), 30
         # adaptive runs: the location fit with gust states and the height prior meets the
-        # issue's median target at relaxed bounds, and beats the constant-wind fit
-        # without priors on the same seeds.
-        errs = {}
+        # issue's targets at relaxed bounds, and its 95 % ellipse is honest where the
+        # constant-wind fit without priors (which reads the integrated gust as position)
+        # is overconfident, on the same seeds (200 runs: 87 % against 28 %).
+        errs, inside = {}, {}
         for name, extra in (("map", []),
                             ("const", ["--set", "locate_gust_mps=0",
                                        "--set", "locate_altitude_sigma_m=0"])):
@@ -153,6 +154,7 @@ class qa_montecarlo(gr_unittest.TestCase):
             self.assertEqual(len(rows), 30)
             self.assertEqual(sum(r["false_arrival"] for r in rows), 0)
             errs[name] = [r["location_error_m"] for r in rows if r["located"]]
+            inside[name] = sum(r["location_in_ellipse"] for r in rows if r["located"])
             if name == "map":
                 # Arrival is declared by the emitter, confirmed by the fit.
                 near = [r for r in rows
@@ -161,8 +163,9 @@ class qa_montecarlo(gr_unittest.TestCase):
         e = errs["map"]
         self.assertGreaterEqual(len(e), 27)
         self.assertLessEqual(statistics.median(e), 30.0)
-        self.assertLessEqual(percentile(e, 0.9), 100.0)
-        self.assertLess(statistics.median(e), 0.75 * statistics.median(errs["const"]))
+        self.assertLessEqual(percentile(e, 0.9), 80.0)
+        self.assertGreaterEqual(inside["map"], 0.7 * len(e))
+        self.assertLessEqual(inside["const"], 0.5 * len(errs["const"]))
 
     def test_rows_do_not_depend_on_thread_count(self):
         args = ["--runs", "6", "--seed", "11", "--strategy", "paper,rss_baseline",

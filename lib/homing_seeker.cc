@@ -144,6 +144,15 @@ private:
         return std::max(0.0, r - d_cfg.loiter_radius_m) / d_cfg.speed_mps;
     }
 
+    // The fix l is the location: located, done.
+    void publish_fix(const emitter_location& l, command& c)
+    {
+        d_location = l;
+        d_status = 2;
+        d_done = true;
+        c.update = true;
+    }
+
     // After a move of the estimate (transit: the time to get to its orbit) or the
     // arrival: locate_max_orbits - 1 more orbits, and at least one more fit.
     void extend_deadline(double loitered, double transit)
@@ -194,11 +203,8 @@ private:
 
         const double loitered = m.time_s - d_loiter_start;
         if (d_pending.valid) { // confirmed in the previous slot: publish the fix now
-            d_location = d_pending;
+            publish_fix(d_pending, c);
             d_pending = emitter_location();
-            d_status = 2;
-            d_done = true;
-            c.update = true;
         } else if (!d_done && loitered >= d_next_fit_s) {
             const emitter_location l = d_locator.fit(d_x, d_y);
             // A fit is steered by once its ellipse fits in the locator's search area
@@ -225,10 +231,7 @@ private:
                         else // time for more fits around this estimate
                             extend_deadline(loitered, 0.0);
                     } else if (fix) {
-                        d_location = l;
-                        d_status = 2;
-                        d_done = true;
-                        c.update = true;
+                        publish_fix(l, c);
                     }
                 } else {
                     // Fly to the new estimate and orbit it; each move (a few at most)
@@ -321,7 +324,7 @@ private:
     double d_deadline_s = 0.0;  // loiter time after which the vehicle gives up
     emitter_location d_pending; // confirmed fix, published with the next slot
     double d_heading_cmd = 0.0, d_last_heading = 0.0, d_loiter_start = 0.0;
-    double d_x = 0.0, d_y = 0.0; // dead-reckoned, origin where arrival was declared
+    double d_x = 0.0, d_y = 0.0; // dead-reckoned, origin where the loiter began
     std::uint64_t d_last_slot = 0;
     emitter_location d_location;
     double d_next_fit_s;

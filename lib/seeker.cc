@@ -57,6 +57,12 @@ void seeker_config::validate() const
         bad("slot_period_s", slot_period_s, "> 0");
     if (!(delta_rad > 0.0 && delta_rad < M_PI / 2))
         bad("delta_rad", delta_rad, "in (0, pi/2)");
+    if (!(delta_max_rad >= 0.0 && delta_max_rad < M_PI / 2))
+        bad("delta_max_rad", delta_max_rad, "in [0, pi/2) (<= delta_rad: delta fixed)");
+    if (!(delta_step_rad > 0.0 && delta_step_rad < M_PI / 2))
+        bad("delta_step_rad", delta_step_rad, "in (0, pi/2)");
+    if (delta_after_steps < 1 || delta_after_steps > 1000)
+        bad("delta_after_steps", delta_after_steps, "in [1, 1000]");
     if (m_slots < 1 || m_slots > 100000)
         bad("m_slots", m_slots, "in [1, 100000]");
     if (!(circle_radius_m > 0.0) || !std::isfinite(circle_radius_m))
@@ -158,6 +164,11 @@ std::vector<std::string> seeker_config::keys()
              "slot_period_s",
              "delta_rad",
              "delta_deg",
+             "delta_max_rad",
+             "delta_max_deg",
+             "delta_step_rad",
+             "delta_step_deg",
+             "delta_after_steps",
              "m_slots",
              "circle_radius_m",
              "moving_average_len",
@@ -244,6 +255,16 @@ void seeker_config::set(const std::string& key, const std::string& value)
         delta_rad = number();
     else if (key == "delta_deg")
         delta_rad = number() * M_PI / 180.0;
+    else if (key == "delta_max_rad")
+        delta_max_rad = number();
+    else if (key == "delta_max_deg")
+        delta_max_rad = number() * M_PI / 180.0;
+    else if (key == "delta_step_rad")
+        delta_step_rad = number();
+    else if (key == "delta_step_deg")
+        delta_step_rad = number() * M_PI / 180.0;
+    else if (key == "delta_after_steps")
+        delta_after_steps = integer();
     else if (key == "m_slots")
         m_slots = integer();
     else if (key == "circle_radius_m")

@@ -50,6 +50,7 @@ public:
     explicit two_stage_seeker(const seeker_config& cfg)
         : d_cfg(cfg),
           d_filter(make_outlier_filter(cfg)),
+          d_delta(cfg.delta_rad),
           d_circle(cfg.strategy == "paper")
     {
         rng g(cfg.seed, 11);
@@ -176,8 +177,8 @@ private:
         d_pos = 0;
         d_sum_plus = d_sum_minus = 0.0;
         d_n_plus = d_n_minus = 0;
-        d_settle_plus = settle_slots(world::wrap(d_theta + d_cfg.delta_rad - d_last_cmd));
-        d_settle_minus = settle_slots(2.0 * d_cfg.delta_rad);
+        d_settle_plus = settle_slots(world::wrap(d_theta + d_delta - d_last_cmd));
+        d_settle_minus = settle_slots(2.0 * d_delta);
     }
 
     command next_command(command& c)
@@ -201,8 +202,7 @@ private:
             tag.settle = pos - half_plus < d_settle_minus;
             tag.last = pos == half_plus + half_minus - 1;
         }
-        const double h =
-            d_theta + (tag.ph == phase::plus ? d_cfg.delta_rad : -d_cfg.delta_rad);
+        const double h = d_theta + (tag.ph == phase::plus ? d_delta : -d_delta);
         return issue(c, h, tag, false);
     }
 
@@ -244,6 +244,7 @@ private:
             theta0 = d_samples_h[arg];
         }
         d_stage = 2;
+        d_tracking = d_cfg.delta_max_rad > d_cfg.delta_rad;
         d_theta = world::wrap(theta0);
         d_samples_f.clear();
         d_samples_h.clear();
@@ -258,13 +259,35 @@ private:
         if (d_n_plus < need || d_n_minus < need)
             return false; // too few measurements in a half: keep theta
         const double diff = d_sum_plus / d_n_plus - d_sum_minus / d_n_minus;
-        d_theta = world::wrap(d_theta + diff * d_cfg.delta_rad / d_cfg.max_doppler_hz());
+        const double a = d_cfg.max_doppler_hz();
+        d_theta = world::wrap(d_theta + diff * d_delta / a);
         ++d_updates;
+        if (d_tracking) {
+            // delta_k (docs/seeker.md "Stage 2 in the wind"). The error this step
+            // measured, |theta~| = asin(|f+ - f-| / (2 f_d,max sin delta_k)); once
+            // delta_after_steps steps in a row measured more than delta on the same side
+            // (a bearing that keeps turning, not the seconds of a pass), the probe grows
+            // toward it by at most delta_step_rad per step, up to delta_max_rad; it falls
+            // back to delta at once.
+            const double e =
+                std::asin(std::min(1.0, std::abs(diff) / (2.0 * a * std::sin(d_delta))));
+            const int side = diff > 0.0 ? 1 : -1;
+            if (e <= d_cfg.delta_rad)
+                d_run = 0;
+            else
+                d_run = (d_run > 0 && side == d_side) ? d_run + 1 : 1;
+            d_side = side;
+            d_delta = d_run >= d_cfg.delta_after_steps
+                          ? std::min(std::min(e, d_cfg.delta_max_rad),
+                                     d_delta + d_cfg.delta_step_rad)
+                          : d_cfg.delta_rad;
+        }
         return true;
     }
 
     seeker_config d_cfg;
     outlier_filter d_filter;
+    double d_delta; // delta_k of the step in progress
     const bool d_circle;
     double d_sense = 1.0, d_circle_step = 0.0;
     long d_circle_cmds = 0, d_circle_next = 0;
@@ -287,6 +310,12 @@ private:
     int d_pos = 0;
     int d_settle_plus = 0, d_settle_minus = 0;
     double d_sum_plus = 0.0, d_sum_minus = 0.0;
+    // delta_k follows the measured error: only after Stage 1 (the loop then faces the
+    // emitter; from an arbitrary heading eq. 5 cannot tell theta~ from pi - theta~),
+    // and only with delta_max_rad > delta_rad.
+    bool d_tracking = false;
+    int d_run = 0;  // consecutive steps that measured more than delta, on one side
+    int d_side = 0; // that side (the sign of f+ - f-)
     int d_n_plus = 0, d_n_minus = 0;
     std::uint64_t d_updates = 0;
 };

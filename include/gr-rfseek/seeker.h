@@ -32,8 +32,18 @@ struct RFSEEK_API seeker_config {
     double slot_period_s = 0.05;            //!< T_slot
     double delta_rad = 0.17453292519943295; //!< Stage-2 perturbation delta (10 deg)
     int m_slots = 20;                       //!< M: slots per half step
-    double circle_radius_m = 100.0;         //!< R_c of the Stage-1 circle
-    int moving_average_len = 15;            //!< Stage-1 moving average (slots)
+    //! `paper`'s Stage-2 perturbation delta_k (eq. 5 writes delta_k; docs/seeker.md
+    //! "Stage 2 in the wind"): after Stage 1, once delta_after_steps steps in a row have
+    //! measured an error beyond delta on the same side, delta_k grows toward the measured
+    //! error by at most delta_step_rad per step, up to delta_max_rad, and falls back to
+    //! delta at once. Stage 2 then follows a bearing that keeps turning (wind near the
+    //! emitter). delta_max_rad <= delta_rad (0): delta fixed, as the paper analyses it.
+    //! paper_no_circle keeps delta fixed.
+    double delta_max_rad = 0.3490658503988659;    //!< 20 deg
+    double delta_step_rad = 0.017453292519943295; //!< 1 deg per step
+    int delta_after_steps = 3;                    //!< steps in a row before delta_k grows
+    double circle_radius_m = 100.0;               //!< R_c of the Stage-1 circle
+    int moving_average_len = 15;                  //!< Stage-1 moving average (slots)
     double outlier_threshold_hz =
         0.0;                  //!< eq. 4 threshold; 0 = 2 f_d,max (4 pi v f_c / c rad/s)
     bool literal_eq4 = false; //!< eq. 4 as printed (compare with the previous raw value)

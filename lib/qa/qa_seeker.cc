@@ -108,6 +108,139 @@ TEST(seeker, stage2_step_follows_the_error_recursion)
     }
 }
 
+namespace {
+
+// `paper` fed the far-field Doppler f = c + A cos(psi - beta) exactly (A = f_d,max,
+// psi = the heading flown, turns instantaneous), with the bearing fixed through Stage 1
+// and beta0 + turn(tau) from then on (tau: seconds into Stage 2), as when the wind
+// carries the vehicle sideways near the emitter. Returns, at every Stage-2 update,
+// theta_est - beta and the probe half-angle delta_k of the step it starts.
+struct turning_run {
+    std::vector<double> errors;
+    std::vector<double> deltas;
+};
+
+template <typename Turn>
+turning_run fly_turning_bearing(Turn turn, double delta_max_rad, int updates)
+{
+    seeker_config cfg;
+    cfg.strategy = "paper";
+    cfg.delta_max_rad = delta_max_rad;
+    auto sk = seeker::make(cfg);
+    const double a = cfg.max_doppler_hz(), beta0 = 0.7;
+    double heading = 0.0, t_stage2 = -1.0;
+    turning_run out;
+    for (std::uint64_t slot = 0; slot < 200000; ++slot) {
+        const double t = slot * cfg.slot_period_s;
+        const double beta = beta0 + (t_stage2 < 0.0 ? 0.0 : turn(t - t_stage2));
+        measurement m;
+        m.slot = slot;
+        m.time_s = t;
+        m.freq_hz = 300.0 + a * std::cos(heading - beta);
+        m.snr_db = 20.0;
+        m.valid = m.has_heading = true;
+        m.heading_rad = heading;
+        const command c = sk->update(m);
+        if (c.stage == 2 && t_stage2 < 0.0)
+            t_stage2 = t;
+        if (c.stage == 2 && c.update && t > t_stage2) {
+            out.errors.push_back(world::wrap(c.theta_est_rad - beta));
+            out.deltas.push_back(std::abs(world::wrap(c.heading_rad - c.theta_est_rad)));
+        }
+        if (static_cast<int>(out.errors.size()) >= updates)
+            break;
+        heading = c.heading_rad;
+    }
+    return out;
+}
+
+} // namespace
+
+TEST(seeker, paper_delta_k_follows_a_bearing_that_turns)
+{
+    // A bearing turning by w = omega * 2 M T_slot per step. With a fixed delta, eq. 5
+    // turns at most 2 delta sin(delta) = 0.061 rad per step (10 deg): at w = 0.08 it
+    // cannot follow and slips. With delta_k up to 20 deg it turns up to 0.24 rad per
+    // step and follows with a steady error of about 17 deg.
+    const double step_s = 2 * 20 * 0.05;
+    const double w = 0.08, omega = w / step_s;
+    const auto turn = [omega](double tau) { return omega * tau; };
+    const auto fixed = fly_turning_bearing(turn, 0.0, 300);
+    const auto tracked = fly_turning_bearing(turn, 20.0 * DEG, 300);
+    ASSERT_EQ(tracked.errors.size(), 300u);
+    double worst_fixed = 0.0;
+    for (double e : fixed.errors)
+        worst_fixed = std::max(worst_fixed, std::abs(e));
+    EXPECT_GT(worst_fixed, 90.0 * DEG) << "fixed delta should slip";
+
+    // The fixed point of eq. 5 with delta_k = clamp(|measured error|, 10, 20 deg),
+    // computed slot by slot: the + half is M slots at theta + delta_k while the bearing
+    // turns on, then M at theta - delta_k; the error is taken at the step's last
+    // measurement. (The seeker's growth limits shape the way in, not the fixed point.)
+    const double a = seeker_config().max_doppler_hz(), T = 0.05;
+    const int M = 20;
+    double theta = 0.0, d = 10.0 * DEG, t = 0.0, steady = 0.0;
+    for (int k = 0; k < 400; ++k) {
+        double fp = 0.0, fm = 0.0;
+        for (int j = 0; j < 2 * M; ++j, t += T)
+            (j < M ? fp : fm) += a * std::cos(theta + (j < M ? d : -d) - omega * t) / M;
+        theta += (fp - fm) * d / a;
+        d = std::clamp(
+            std::asin(std::min(1.0, std::abs(fp - fm) / (2 * a * std::sin(d)))),
+            10.0 * DEG,
+            20.0 * DEG);
+        if (k >= 300)
+            steady += (omega * (t - T) - theta) / 100.0;
+    }
+    double mean = 0.0;
+    for (int k = 200; k < 300; ++k) {
+        // lagging behind the turning bearing: theta_est - beta < 0 for omega > 0
+        EXPECT_LT(std::abs(tracked.errors[k]), 30.0 * DEG) << "update " << k;
+        mean += tracked.errors[k] / 100.0;
+    }
+    EXPECT_NEAR(-mean, steady, 0.5 * DEG) << "steady error " << steady / DEG << " deg";
+}
+
+TEST(seeker, paper_delta_k_stays_delta_while_the_error_is_small)
+{
+    // A bearing that does not turn: after Stage 1 (exact here) every measured error is
+    // below delta, so every probe is the paper's delta: the reference flights are the
+    // paper's Stage 2.
+    const auto r = fly_turning_bearing([](double) { return 0.0; }, 20.0 * DEG, 100);
+    ASSERT_EQ(r.deltas.size(), 100u);
+    for (double d : r.deltas)
+        EXPECT_NEAR(d, 10.0 * DEG, 1e-9);
+    for (double e : r.errors)
+        EXPECT_LT(std::abs(e), 2.0 * DEG);
+}
+
+TEST(seeker, paper_delta_k_grows_slowly_and_falls_at_once)
+{
+    // The bearing jumps 60 deg as Stage 2 begins. The probe stays delta until
+    // delta_after_steps (3) updates in a row have measured an error beyond delta; then
+    // delta_k grows by at most delta_step (1 deg) per step, never beyond delta_max (20
+    // deg), and is delta again from the first step that measures less than delta.
+    const auto r = fly_turning_bearing(
+        [](double tau) { return tau > 0.0 ? 60.0 * DEG : 0.0; }, 20.0 * DEG, 200);
+    ASSERT_EQ(r.deltas.size(), 200u);
+    for (int k = 0; k < 2; ++k)
+        EXPECT_NEAR(r.deltas[k], 10.0 * DEG, 1e-9) << "update " << k;
+    double largest = 0.0;
+    for (std::size_t k = 1; k < r.deltas.size(); ++k) {
+        EXPECT_LE(r.deltas[k] - r.deltas[k - 1], 1.0 * DEG + 1e-9) << "update " << k;
+        EXPECT_LE(r.deltas[k], 20.0 * DEG + 1e-9);
+        largest = std::max(largest, r.deltas[k]);
+    }
+    EXPECT_GT(largest, 15.0 * DEG);
+    // Converged: the error and the probe are the paper's again.
+    EXPECT_LT(std::abs(r.errors.back()), 1.0 * DEG);
+    EXPECT_NEAR(r.deltas.back(), 10.0 * DEG, 1e-9);
+    // It converges faster than with delta fixed: the error after 20 steps.
+    const auto fixed = fly_turning_bearing(
+        [](double tau) { return tau > 0.0 ? 60.0 * DEG : 0.0; }, 0.0, 200);
+    EXPECT_LT(std::abs(r.errors[20]), std::abs(fixed.errors[20]));
+}
+
 TEST(seeker, reaches_dv_from_any_initial_heading)
 {
     for (double err_deg : { 0.0, 60.0, -90.0, 135.0, 170.0, -175.0 }) {
@@ -286,7 +419,8 @@ TEST(seeker, bad_configuration_names_the_field)
              [](seeker_config& s) { s.circle_radius_m = -1.0; },
              [](seeker_config& s) { s.speed_mps = 0.0; },
              [](seeker_config& s) { s.moving_average_len = 0; },
-             [](seeker_config& s) { s.turn_rate_rad_per_s = -1.0; } }) {
+             [](seeker_config& s) { s.turn_rate_rad_per_s = -1.0; },
+             [](seeker_config& s) { s.delta_max_rad = 2.0; } }) {
         seeker_config s;
         mutate(s);
         try {

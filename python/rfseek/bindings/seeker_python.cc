@@ -4,7 +4,7 @@
  */
 
 /* BINDTOOL_HEADER_FILE(seeker.h) */
-/* BINDTOOL_HEADER_FILE_HASH(715fff67a64228542795162e50cb279e) */
+/* BINDTOOL_HEADER_FILE_HASH(6d14dde6c214686aeb9cfdfa2ad5d7c8) */
 
 #include "kwargs.h"
 #include <gr-rfseek/seeker.h>
@@ -32,6 +32,11 @@ void bind_seeker(py::module& m)
     RW(carrier_hz, "f_c (Hz)");
     RW(slot_period_s, "T_slot (s)");
     RW(delta_rad, "Stage-2 perturbation delta (rad)");
+    RW(delta_max_rad, "paper: largest Stage-2 delta_k (rad; <= delta_rad: delta fixed)");
+    RW(delta_step_rad, "paper: most delta_k grows per Stage-2 step (rad)");
+    RW(delta_after_steps,
+       "paper: steps in a row measuring an error beyond delta, on one side, before "
+       "delta_k grows");
     RW(m_slots, "M: slots per half step");
     RW(circle_radius_m, "R_c of the Stage-1 circle (m)");
     RW(moving_average_len, "Stage-1 moving average (slots)");

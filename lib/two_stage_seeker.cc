@@ -10,7 +10,8 @@
  * Timing: the measurement of slot j is taken at the heading commanded after slot j-1, so
  * each measurement is credited to the command that was in force when it was taken (its
  * "tag"). A Stage-2 step is a list of commands: S_plus settling slots then M slots at
- * theta + delta, S_minus settling slots then M slots at theta - delta. Settling slots
+ * theta + delta_k, S_minus settling slots then M slots at theta - delta_k (delta_k =
+ * delta, or larger while a bearing keeps turning: apply_eq5). Settling slots
  * (the vehicle still turning at its finite rate) are flown but not averaged; with
  * instantaneous turns there are none. The update (eq. 5) is applied when the measurement
  * of the step's last command arrives, before the next command is issued.
@@ -97,7 +98,8 @@ public:
             d_missing += gap;
             if (gap >= d_cfg.hold_after_missing && d_stage == 2 && !d_hold) {
                 // The vehicle held its course through the gap: the step in progress is
-                // stale, start a new one.
+                // stale, start a new one (and delta_k anew).
+                reset_delta_k();
                 start_step();
                 d_prev = cmd_tag{};
             }
@@ -123,8 +125,10 @@ public:
             if (!valid)
                 return issue(c, d_hold_heading, cmd_tag{}, true);
             d_hold = false; // measurements are back: resume
-            if (d_stage == 2)
+            if (d_stage == 2) {
+                reset_delta_k();
                 start_step();
+            }
             d_prev = cmd_tag{};
         }
 
@@ -169,6 +173,13 @@ private:
             return 0;
         return static_cast<int>(std::ceil(
             std::abs(turn) / (d_cfg.turn_rate_rad_per_s * d_cfg.slot_period_s) - 1e-9));
+    }
+
+    // After an outage the errors measured before it say nothing of the bearing now.
+    void reset_delta_k()
+    {
+        d_run = 0;
+        d_delta = d_cfg.delta_rad;
     }
 
     void start_step()
@@ -252,12 +263,14 @@ private:
         start_step();
     }
 
-    // Stage 2, eq. 5 in Hz: theta += (mean f+ - mean f-) delta / f_d,max.
+    // Stage 2, eq. 5 in Hz: theta += (mean f+ - mean f-) delta_k / f_d,max.
     bool apply_eq5()
     {
         const int need = std::max(1, d_cfg.m_slots / 2);
-        if (d_n_plus < need || d_n_minus < need)
-            return false; // too few measurements in a half: keep theta
+        if (d_n_plus < need || d_n_minus < need) {
+            reset_delta_k(); // too few measurements in a half: keep theta, delta anew
+            return false;
+        }
         const double diff = d_sum_plus / d_n_plus - d_sum_minus / d_n_minus;
         const double a = d_cfg.max_doppler_hz();
         d_theta = world::wrap(d_theta + diff * d_delta / a);
@@ -267,8 +280,9 @@ private:
             // measured, |theta~| = asin(|f+ - f-| / (2 f_d,max sin delta_k)); once
             // delta_after_steps steps in a row measured more than delta on the same side
             // (a bearing that keeps turning, not the seconds of a pass), the probe grows
-            // toward it by at most delta_step_rad per step, up to delta_max_rad; it falls
-            // back to delta at once.
+            // toward it by at most delta_step_rad per step, up to delta_max_rad, and
+            // never beyond the error just measured; it is delta again as soon as a step
+            // measures less than delta.
             const double e =
                 std::asin(std::min(1.0, std::abs(diff) / (2.0 * a * std::sin(d_delta))));
             const int side = diff > 0.0 ? 1 : -1;

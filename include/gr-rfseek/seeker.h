@@ -35,8 +35,9 @@ struct RFSEEK_API seeker_config {
     //! `paper`'s Stage-2 perturbation delta_k (eq. 5 writes delta_k; docs/seeker.md
     //! "Stage 2 in the wind"): after Stage 1, once delta_after_steps steps in a row have
     //! measured an error beyond delta on the same side, delta_k grows toward the measured
-    //! error by at most delta_step_rad per step, up to delta_max_rad, and falls back to
-    //! delta at once. Stage 2 then follows a bearing that keeps turning (wind near the
+    //! error by at most delta_step_rad per step, up to delta_max_rad, never beyond the
+    //! error just measured, and is delta again as soon as a step measures less (or after
+    //! an outage). Stage 2 then follows a bearing that keeps turning (wind near the
     //! emitter). delta_max_rad <= delta_rad (0): delta fixed, as the paper analyses it.
     //! paper_no_circle keeps delta fixed.
     double delta_max_rad = 0.3490658503988659;    //!< 20 deg
@@ -124,7 +125,7 @@ struct RFSEEK_API seeker_config {
     double max_doppler_hz() const;
     double effective_outlier_threshold_hz() const;
 
-    //! Names settable by set() (the fields, plus delta_deg for delta_rad in degrees).
+    //! Names settable by set() (the fields, plus *_deg aliases of the angles in degrees).
     static std::vector<std::string> keys();
     /*!
      * Set a field by name from text (numbers, true/false, none for initial_heading_rad).

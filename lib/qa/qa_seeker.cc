@@ -161,7 +161,7 @@ TEST(seeker, paper_delta_k_follows_a_bearing_that_turns)
     // A bearing turning by w = omega * 2 M T_slot per step. With a fixed delta, eq. 5
     // turns at most 2 delta sin(delta) = 0.061 rad per step (10 deg): at w = 0.08 it
     // cannot follow and slips. With delta_k up to 20 deg it turns up to 0.24 rad per
-    // step and follows with a steady error of about 17 deg.
+    // step and follows with a steady error of about 16 deg.
     const double step_s = 2 * 20 * 0.05;
     const double w = 0.08, omega = w / step_s;
     const auto turn = [omega](double tau) { return omega * tau; };
@@ -214,21 +214,27 @@ TEST(seeker, paper_delta_k_stays_delta_while_the_error_is_small)
         EXPECT_LT(std::abs(e), 2.0 * DEG);
 }
 
-TEST(seeker, paper_delta_k_grows_slowly_and_falls_at_once)
+TEST(seeker, paper_delta_k_grows_slowly_and_returns_to_delta)
 {
     // The bearing jumps 60 deg as Stage 2 begins. The probe stays delta until
     // delta_after_steps (3) updates in a row have measured an error beyond delta; then
     // delta_k grows by at most delta_step (1 deg) per step, never beyond delta_max (20
-    // deg), and is delta again from the first step that measures less than delta.
+    // deg), never beyond the error just measured, and is delta again once a step
+    // measures less than delta.
     const auto r = fly_turning_bearing(
         [](double tau) { return tau > 0.0 ? 60.0 * DEG : 0.0; }, 20.0 * DEG, 200);
     ASSERT_EQ(r.deltas.size(), 200u);
     for (int k = 0; k < 2; ++k)
         EXPECT_NEAR(r.deltas[k], 10.0 * DEG, 1e-9) << "update " << k;
+    EXPECT_NEAR(r.deltas[2], 11.0 * DEG, 1e-9); // the third in a row: one step up
     double largest = 0.0;
     for (std::size_t k = 1; k < r.deltas.size(); ++k) {
         EXPECT_LE(r.deltas[k] - r.deltas[k - 1], 1.0 * DEG + 1e-9) << "update " << k;
         EXPECT_LE(r.deltas[k], 20.0 * DEG + 1e-9);
+        // never beyond the error: the error before update k is the one after update k-1
+        // (the bearing no longer moves), so delta_k <= max(delta, |that error|)
+        EXPECT_LE(r.deltas[k], std::max(10.0 * DEG, std::abs(r.errors[k - 1])) + 1e-6)
+            << "update " << k;
         largest = std::max(largest, r.deltas[k]);
     }
     EXPECT_GT(largest, 15.0 * DEG);
@@ -432,6 +438,31 @@ TEST(seeker, bad_configuration_names_the_field)
     }
 }
 
+TEST(seeker, bad_delta_k_configuration_names_the_field_and_range)
+{
+    const std::vector<std::pair<std::string, void (*)(seeker_config&)>> cases = {
+        { "delta_max_rad", [](seeker_config& s) { s.delta_max_rad = 2.0; } },
+        { "delta_max_rad", [](seeker_config& s) { s.delta_max_rad = std::nan(""); } },
+        { "delta_step_rad", [](seeker_config& s) { s.delta_step_rad = 0.0; } },
+        { "delta_after_steps", [](seeker_config& s) { s.delta_after_steps = 0; } },
+    };
+    for (const auto& [name, mutate] : cases) {
+        seeker_config s;
+        mutate(s);
+        try {
+            s.validate();
+            ADD_FAILURE() << name << " accepted";
+        } catch (const std::invalid_argument& e) {
+            const std::string what = e.what();
+            EXPECT_NE(what.find("seeker_config." + name), std::string::npos) << what;
+            EXPECT_NE(what.find("in "), std::string::npos) << what; // the range
+        }
+    }
+    seeker_config fixed; // at or below delta: delta fixed, valid
+    fixed.delta_max_rad = 0.0;
+    EXPECT_NO_THROW(fixed.validate());
+}
+
 TEST(rss_baseline, uses_only_power_and_is_deterministic)
 {
     // Same powers, different frequencies: the same commands.
@@ -501,6 +532,12 @@ TEST(seeker, config_set_by_name)
     EXPECT_NEAR(c.delta_rad, 15.0 * DEG, 1e-15);
     c.set("m_slots", "30");
     EXPECT_EQ(c.m_slots, 30);
+    c.set("delta_max_deg", "25");
+    EXPECT_NEAR(c.delta_max_rad, 25.0 * DEG, 1e-15);
+    c.set("delta_step_deg", "2");
+    EXPECT_NEAR(c.delta_step_rad, 2.0 * DEG, 1e-15);
+    c.set("delta_after_steps", "4");
+    EXPECT_EQ(c.delta_after_steps, 4);
     c.set("strategy", "rss_baseline");
     EXPECT_EQ(c.strategy, "rss_baseline");
     c.set("literal_eq4", "true");

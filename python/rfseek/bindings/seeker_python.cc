@@ -4,7 +4,7 @@
  */
 
 /* BINDTOOL_HEADER_FILE(seeker.h) */
-/* BINDTOOL_HEADER_FILE_HASH(6d14dde6c214686aeb9cfdfa2ad5d7c8) */
+/* BINDTOOL_HEADER_FILE_HASH(01368ccfbf248a962ae5faea3c9356e7) */
 
 #include "kwargs.h"
 #include <gr-rfseek/seeker.h>

@@ -52,7 +52,8 @@ public:
         : d_cfg(cfg),
           d_filter(make_outlier_filter(cfg)),
           d_delta(cfg.delta_rad),
-          d_circle(cfg.strategy == "paper")
+          d_circle(cfg.strategy == "paper"),
+          d_grow_delta(d_circle && cfg.delta_max_rad > cfg.delta_rad)
     {
         rng g(cfg.seed, 11);
         d_sense = g.uniform() < 0.5 ? 1.0 : -1.0;
@@ -255,7 +256,6 @@ private:
             theta0 = d_samples_h[arg];
         }
         d_stage = 2;
-        d_tracking = d_cfg.delta_max_rad > d_cfg.delta_rad;
         d_theta = world::wrap(theta0);
         d_samples_f.clear();
         d_samples_h.clear();
@@ -271,21 +271,22 @@ private:
             reset_delta_k(); // too few measurements in a half: keep theta, delta anew
             return false;
         }
-        const double diff = d_sum_plus / d_n_plus - d_sum_minus / d_n_minus;
+        const double mean_plus = d_sum_plus / d_n_plus;
+        const double mean_minus = d_sum_minus / d_n_minus;
         const double a = d_cfg.max_doppler_hz();
-        d_theta = world::wrap(d_theta + diff * d_delta / a);
+        d_theta = world::wrap(d_theta + (mean_plus - mean_minus) * d_delta / a);
         ++d_updates;
-        if (d_tracking) {
+        if (d_grow_delta) {
             // delta_k (docs/seeker.md "Stage 2 in the wind"). The error this step
-            // measured, |theta~| = asin(|f+ - f-| / (2 f_d,max sin delta_k)); once
+            // measured (the probe difference inverted, folded into [-90, 90] deg); once
             // delta_after_steps steps in a row measured more than delta on the same side
             // (a bearing that keeps turning, not the seconds of a pass), the probe grows
             // toward it by at most delta_step_rad per step, up to delta_max_rad, and
             // never beyond the error just measured; it is delta again as soon as a step
             // measures less than delta.
-            const double e =
-                std::asin(std::min(1.0, std::abs(diff) / (2.0 * a * std::sin(d_delta))));
-            const int side = diff > 0.0 ? 1 : -1;
+            const double err = invert_probe_difference(mean_plus, mean_minus, d_delta, a);
+            const double e = std::abs(err);
+            const int side = err > 0.0 ? 1 : -1;
             if (e <= d_cfg.delta_rad)
                 d_run = 0;
             else
@@ -303,6 +304,10 @@ private:
     outlier_filter d_filter;
     double d_delta; // delta_k of the step in progress
     const bool d_circle;
+    // delta_k follows the measured error only in `paper`, whose Stage 2 starts after
+    // Stage 1 facing the emitter (from an arbitrary heading eq. 5 cannot tell theta~
+    // from pi - theta~), and only with delta_max_rad > delta_rad.
+    const bool d_grow_delta;
     double d_sense = 1.0, d_circle_step = 0.0;
     long d_circle_cmds = 0, d_circle_next = 0;
     double d_circle_base = 0.0;
@@ -324,12 +329,8 @@ private:
     int d_pos = 0;
     int d_settle_plus = 0, d_settle_minus = 0;
     double d_sum_plus = 0.0, d_sum_minus = 0.0;
-    // delta_k follows the measured error: only after Stage 1 (the loop then faces the
-    // emitter; from an arbitrary heading eq. 5 cannot tell theta~ from pi - theta~),
-    // and only with delta_max_rad > delta_rad.
-    bool d_tracking = false;
     int d_run = 0;  // consecutive steps that measured more than delta, on one side
-    int d_side = 0; // that side (the sign of f+ - f-)
+    int d_side = 0; // that side (the sign of the measured error)
     int d_n_plus = 0, d_n_minus = 0;
     std::uint64_t d_updates = 0;
 };

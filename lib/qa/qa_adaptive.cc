@@ -9,6 +9,7 @@
  * every run from 1 km).
  */
 
+#include "model_loop.h"
 #include <gr-rfseek/scenario.h>
 #include <gr-rfseek/seeker.h>
 #include <gr-rfseek/simulation.h>
@@ -19,63 +20,11 @@
 #include <vector>
 
 using namespace gr::rfseek;
+using gr::rfseek::qa::model_loop;
 
 namespace {
 
 constexpr double DEG = M_PI / 180.0;
-
-// A noise-free stand-in for world + estimator: the vehicle is a point whose heading
-// follows the commands (within an optional turn-rate limit).
-struct model_loop {
-    seeker_config cfg;
-    std::unique_ptr<seeker> sk;
-    double beta = 0.0;  // bearing to the emitter
-    double cfo = 250.0; // Hz at t = 0
-    double drift = 0.0; // Hz/s
-    double heading = 0.0;
-    double commanded = 0.0;
-    std::uint64_t slot = 0;
-    int turning_slots = 0;
-
-    explicit model_loop(seeker_config c, double start_heading) : cfg(c)
-    {
-        sk = seeker::make(cfg);
-        heading = commanded = start_heading;
-    }
-    command step()
-    {
-        const double t = slot * cfg.slot_period_s;
-        measurement m;
-        m.slot = slot;
-        m.time_s = t;
-        m.freq_hz = cfg.max_doppler_hz() * std::cos(heading - beta) + cfo + drift * t;
-        m.valid = true;
-        m.has_heading = true;
-        m.heading_rad = heading;
-        const command c = sk->update(m);
-        commanded = c.heading_rad;
-        const double rate = cfg.turn_rate_rad_per_s * cfg.slot_period_s;
-        const double turn = world::wrap(commanded - heading);
-        if (rate > 0.0 && std::abs(turn) > rate) {
-            heading = world::wrap(heading + std::copysign(rate, turn));
-            ++turning_slots;
-        } else
-            heading = commanded;
-        ++slot;
-        return c;
-    }
-    // Runs n slots; returns the largest |theta_est - beta| over the last `tail` slots.
-    double run(int n, int tail)
-    {
-        double worst = 0.0;
-        for (int i = 0; i < n; ++i) {
-            const command c = step();
-            if (i >= n - tail)
-                worst = std::max(worst, std::abs(world::wrap(c.theta_est_rad - beta)));
-        }
-        return worst;
-    }
-};
 
 seeker_config adaptive()
 {

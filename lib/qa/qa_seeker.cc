@@ -7,6 +7,7 @@
  * robustness to invalid and missing measurements, and eq. 4.
  */
 
+#include "model_loop.h"
 #include <gr-rfseek/rng.h>
 #include <gr-rfseek/seeker.h>
 #include <gr-rfseek/simulation.h>
@@ -110,11 +111,12 @@ TEST(seeker, stage2_step_follows_the_error_recursion)
 
 namespace {
 
-// `paper` fed the far-field Doppler f = c + A cos(psi - beta) exactly (A = f_d,max,
-// psi = the heading flown, turns instantaneous), with the bearing fixed through Stage 1
-// and beta0 + turn(tau) from then on (tau: seconds into Stage 2), as when the wind
-// carries the vehicle sideways near the emitter. Returns, at every Stage-2 update,
-// theta_est - beta and the probe half-angle delta_k of the step it starts.
+// `paper` in the noise-free model loop (far-field Doppler f = c + A cos(psi - beta)
+// exactly, A = f_d,max, psi the heading flown, turns instantaneous), with the bearing
+// fixed through Stage 1 and beta0 + turn(tau) from then on (tau: seconds into Stage 2),
+// as when the wind carries the vehicle sideways near the emitter. Returns, at every
+// Stage-2 update, theta_est - beta and the probe half-angle delta_k of the step it
+// starts.
 struct turning_run {
     std::vector<double> errors;
     std::vector<double> deltas;
@@ -126,30 +128,21 @@ turning_run fly_turning_bearing(Turn turn, double delta_max_rad, int updates)
     seeker_config cfg;
     cfg.strategy = "paper";
     cfg.delta_max_rad = delta_max_rad;
-    auto sk = seeker::make(cfg);
-    const double a = cfg.max_doppler_hz(), beta0 = 0.7;
-    double heading = 0.0, t_stage2 = -1.0;
+    qa::model_loop loop(cfg, 0.0);
+    loop.cfo = 300.0;
+    const double beta0 = 0.7;
+    double t_stage2 = -1.0;
     turning_run out;
-    for (std::uint64_t slot = 0; slot < 200000; ++slot) {
-        const double t = slot * cfg.slot_period_s;
-        const double beta = beta0 + (t_stage2 < 0.0 ? 0.0 : turn(t - t_stage2));
-        measurement m;
-        m.slot = slot;
-        m.time_s = t;
-        m.freq_hz = 300.0 + a * std::cos(heading - beta);
-        m.snr_db = 20.0;
-        m.valid = m.has_heading = true;
-        m.heading_rad = heading;
-        const command c = sk->update(m);
+    while (loop.slot < 200000 && static_cast<int>(out.errors.size()) < updates) {
+        const double t = loop.slot * cfg.slot_period_s;
+        loop.beta = beta0 + (t_stage2 < 0.0 ? 0.0 : turn(t - t_stage2));
+        const command c = loop.step();
         if (c.stage == 2 && t_stage2 < 0.0)
             t_stage2 = t;
         if (c.stage == 2 && c.update && t > t_stage2) {
-            out.errors.push_back(world::wrap(c.theta_est_rad - beta));
+            out.errors.push_back(world::wrap(c.theta_est_rad - loop.beta));
             out.deltas.push_back(std::abs(world::wrap(c.heading_rad - c.theta_est_rad)));
         }
-        if (static_cast<int>(out.errors.size()) >= updates)
-            break;
-        heading = c.heading_rad;
     }
     return out;
 }

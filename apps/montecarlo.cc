@@ -156,7 +156,7 @@ struct row {
     std::string strategy;
     std::uint64_t seed = 0;
     std::size_t point = 0;
-    double distance_m = 0, ratio = 0, time_s = 0;
+    double distance_m = 0, ratio = 0, straight_ratio = 0, time_s = 0;
     bool success = false;
     std::uint64_t slots = 0;
     bool has_stage1 = false;
@@ -255,7 +255,7 @@ double fftw_floor_us(int n)
 // Statistics over the rows that ran (error rows are counted apart).
 std::string summary_json(const std::vector<const row*>& rows, double shortest)
 {
-    std::vector<double> d, ratio, s1, detect, loc_err, major, over;
+    std::vector<double> d, ratio, sratio, s1, detect, loc_err, major, over;
     int success = 0, errors = 0, declared = 0, near = 0, false_arr = 0, inside = 0,
         over_near = 0;
     bool arrival = false;
@@ -267,6 +267,7 @@ std::string summary_json(const std::vector<const row*>& rows, double shortest)
         }
         d.push_back(r->distance_m);
         ratio.push_back(r->ratio);
+        sratio.push_back(r->straight_ratio);
         success += r->success;
         t += r->time_s;
         if (r->has_stage1)
@@ -288,10 +289,11 @@ std::string summary_json(const std::vector<const row*>& rows, double shortest)
             inside += r->in_ellipse;
         }
     }
-    double md = 0, mr = 0;
+    double md = 0, mr = 0, ms = 0;
     for (std::size_t i = 0; i < d.size(); ++i) {
         md += d[i];
         mr += ratio[i];
+        ms += sratio[i];
     }
     const double n = std::max<std::size_t>(d.size(), 1);
     std::ostringstream o;
@@ -303,6 +305,9 @@ std::string summary_json(const std::vector<const row*>& rows, double shortest)
       << ", \"mean_ratio\": " << jnum(mr / n)
       << ", \"median_ratio\": " << jnum(percentile(ratio, 0.5))
       << ", \"p90_ratio\": " << jnum(percentile(ratio, 0.9))
+      << ", \"mean_straight_ratio\": " << jnum(ms / n)
+      << ", \"median_straight_ratio\": " << jnum(percentile(sratio, 0.5))
+      << ", \"p90_straight_ratio\": " << jnum(percentile(sratio, 0.9))
       << ", \"shortest_path_m\": " << jnum(shortest)
       << ", \"mean_time_s\": " << jnum(t / n)
       << ", \"stage1_abs_error_deg_median\": " << jnum(percentile(s1, 0.5))
@@ -339,6 +344,7 @@ void fill(row& r, const run_summary& s)
 {
     r.distance_m = printed(s.distance_m);
     r.ratio = printed(s.ratio);
+    r.straight_ratio = printed(s.straight_ratio);
     r.time_s = printed(s.time_s);
     r.success = s.success;
     r.slots = s.slots;
@@ -374,7 +380,8 @@ struct csv_layout {
     {
         return std::string("seed,strategy") + (by_preset ? ",preset" : "") +
                (by_sweep ? ",sweep_value" : "") +
-               ",distance_m,ratio,time_s,success,slots,stage1_heading_error_deg" +
+               ",distance_m,ratio,straight_ratio,time_s,success,slots,"
+               "stage1_heading_error_deg" +
                (by_arrival ? ",declared,arrival_detect_distance_m,false_arrival,located,"
                              "location_error_m,location_major_m,location_in_ellipse,"
                              "overflight_distance_m"
@@ -391,10 +398,11 @@ struct csv_layout {
             c << "," << points[r.point].sweep_value();
         if (r.error.empty())
             c << "," << jnum(r.distance_m) << "," << jnum(r.ratio) << ","
-              << jnum(r.time_s) << "," << (r.success ? 1 : 0) << "," << r.slots << ","
+              << jnum(r.straight_ratio) << "," << jnum(r.time_s) << ","
+              << (r.success ? 1 : 0) << "," << r.slots << ","
               << (r.has_stage1 ? jnum(r.stage1_deg) : "") << ",";
         else
-            c << ",,,,,,";
+            c << ",,,,,,,";
         if (by_arrival) {
             if (r.error.empty())
                 c << (r.declared ? 1 : 0) << "," << (r.declared ? jnum(r.detect_m) : "")
@@ -495,7 +503,7 @@ std::size_t load_rows(const std::string& csv,
             c.emplace_back();
         const std::size_t base = 2 + lay.by_preset + lay.by_sweep;
         const std::size_t extra = lay.by_arrival ? csv_layout::arrival_columns : 0;
-        if (c.size() != base + 7 + extra) {
+        if (c.size() != base + 8 + extra) {
             ++dropped;
             continue;
         }
@@ -515,17 +523,18 @@ std::size_t load_rows(const std::string& csv,
             r.strategy = *st;
             r.seed = seed;
             r.point = pi;
-            r.error = c[k + 6 + extra];
+            r.error = c[k + 7 + extra];
             if (r.error.empty()) {
                 r.distance_m = num("distance_m", c[k]);
                 r.ratio = num("ratio", c[k + 1]);
-                r.time_s = num("time_s", c[k + 2]);
-                r.success = c[k + 3] == "1";
-                r.slots = std::stoull(c[k + 4]);
-                r.has_stage1 = !c[k + 5].empty();
-                r.stage1_deg = r.has_stage1 ? num("stage1", c[k + 5]) : 0.0;
+                r.straight_ratio = num("straight_ratio", c[k + 2]);
+                r.time_s = num("time_s", c[k + 3]);
+                r.success = c[k + 4] == "1";
+                r.slots = std::stoull(c[k + 5]);
+                r.has_stage1 = !c[k + 6].empty();
+                r.stage1_deg = r.has_stage1 ? num("stage1", c[k + 6]) : 0.0;
                 if (lay.by_arrival) {
-                    const std::size_t a = k + 6;
+                    const std::size_t a = k + 7;
                     r.arrival = true;
                     r.declared = c[a] == "1";
                     r.detect_m = r.declared ? num("arrival_detect", c[a + 1]) : 0.0;
@@ -907,10 +916,11 @@ int main(int argc, char** argv)
                 run_summary s;
                 int success = 0, has1 = 0, arr = 0, decl = 0, fa = 0, loc = 0, in = 0,
                     over = 0;
-                ss >> s.distance_m >> s.ratio >> s.time_s >> success >> s.slots >> has1 >>
-                    s.stage1_heading_error_rad >> arr >> decl >>
-                    s.arrival_detect_distance_m >> fa >> loc >> s.location_error_m >>
-                    s.location_major_m >> in >> over >> s.overflight_distance_m;
+                ss >> s.distance_m >> s.ratio >> s.straight_ratio >> s.time_s >>
+                    success >> s.slots >> has1 >> s.stage1_heading_error_rad >> arr >>
+                    decl >> s.arrival_detect_distance_m >> fa >> loc >>
+                    s.location_error_m >> s.location_major_m >> in >> over >>
+                    s.overflight_distance_m;
                 s.overflight = over;
                 s.success = success;
                 s.has_stage1 = has1;
@@ -1061,7 +1071,9 @@ int main(int argc, char** argv)
             j << ", \"error\": " << jstr(r.error);
         else
             j << ", \"distance_m\": " << jnum(r.distance_m)
-              << ", \"ratio\": " << jnum(r.ratio) << ", \"time_s\": " << jnum(r.time_s)
+              << ", \"ratio\": " << jnum(r.ratio)
+              << ", \"straight_ratio\": " << jnum(r.straight_ratio)
+              << ", \"time_s\": " << jnum(r.time_s)
               << ", \"success\": " << (r.success ? "true" : "false")
               << ", \"slots\": " << r.slots << ", \"stage1_heading_error_deg\": "
               << (r.has_stage1 ? jnum(r.stage1_deg) : "null");
@@ -1136,7 +1148,13 @@ int main(int argc, char** argv)
                 "preset %s%s", points[p].preset().c_str(), by_sweep ? ", " : "\n");
         if (by_sweep)
             std::printf("%s = %s\n", sweep_key.c_str(), points[p].sweep_value().c_str());
-        std::printf("  %-16s %8s %10s %10s %10s %8s %8s %8s\n",
+        // In wind, also the ratio to the straight ground line's air distance
+        // (straight_ratio: 1 for the straight ground track, whatever the wind).
+        bool windy = false;
+        for (const auto& st : strategies)
+            for (const row* r : select(p, st))
+                windy = windy || (r->error.empty() && r->straight_ratio != r->ratio);
+        std::printf("  %-16s %8s %10s %10s %10s %8s %8s %8s",
                     "strategy",
                     "success",
                     "mean_m",
@@ -1145,23 +1163,26 @@ int main(int argc, char** argv)
                     "mean_x",
                     "med_x",
                     "p90_x");
+        std::printf(windy ? " %8s %8s\n" : "\n", "line_x", "p90_lx");
         for (const auto& st : strategies) {
-            std::vector<double> d, ratio;
+            std::vector<double> d, ratio, sratio;
             int ok = 0;
             for (const row* r : select(p, st)) {
                 if (!r->error.empty())
                     continue;
                 d.push_back(r->distance_m);
                 ratio.push_back(r->ratio);
+                sratio.push_back(r->straight_ratio);
                 ok += r->success;
             }
-            double md = 0, mr = 0;
+            double md = 0, mr = 0, ms = 0;
             for (std::size_t i = 0; i < d.size(); ++i) {
                 md += d[i];
                 mr += ratio[i];
+                ms += sratio[i];
             }
             const double n = std::max<std::size_t>(d.size(), 1);
-            std::printf("  %-16s %7.1f%% %10.0f %10.0f %10.0f %8.3f %8.3f %8.3f\n",
+            std::printf("  %-16s %7.1f%% %10.0f %10.0f %10.0f %8.3f %8.3f %8.3f",
                         st.c_str(),
                         100.0 * ok / n,
                         md / n,
@@ -1170,6 +1191,9 @@ int main(int argc, char** argv)
                         mr / n,
                         percentile(ratio, 0.5),
                         percentile(ratio, 0.9));
+            if (windy)
+                std::printf(" %8.3f %8.3f", ms / n, percentile(sratio, 0.9));
+            std::printf("\n");
         }
     }
     std::printf("wrote %s and %s\n", out.c_str(), csv.c_str());

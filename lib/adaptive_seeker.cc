@@ -27,6 +27,10 @@
  *   heading once the vehicle has turned to it, the measured one while it turns), never
  *   averaged as if flown straight at the probe heading.
  * - Eq. 4 (outlier_filter) vets every frequency; rejected values are simply left out.
+ * - Over the ground (adaptive_ground_track): the probes are flown around theta + crab,
+ *   the crab from ground_track_guidance fed with each cycle's measured bearing, so that
+ *   a crosswind does not bend the ground track into a pursuit curve. theta stays the
+ *   bearing estimate; the fit is centred on the heading flown.
  */
 
 #include "doppler_fit.h"
@@ -51,7 +55,10 @@ class adaptive_seeker : public seeker
 {
 public:
     explicit adaptive_seeker(const seeker_config& cfg)
-        : d_cfg(cfg), d_filter(make_outlier_filter(cfg)), d_amp(cfg.max_doppler_hz())
+        : d_cfg(cfg),
+          d_filter(make_outlier_filter(cfg)),
+          d_track(make_ground_track(cfg)),
+          d_amp(cfg.max_doppler_hz())
     {
         d_delta = cfg.adaptive_delta_max_rad;
     }
@@ -102,7 +109,7 @@ public:
             // Hold course; the cycle in progress is stale.
             if (!d_hold) {
                 d_hold = true;
-                d_hold_heading = d_acquiring ? d_last_cmd : d_theta;
+                d_hold_heading = d_acquiring ? d_last_cmd : d_theta + d_crab;
             }
             return issue(c, d_hold_heading, -1, true);
         }
@@ -205,6 +212,8 @@ private:
             r.amplitude_hz > 1.5 * d_amp || !(r.bearing_std_rad < ACQ_MAX_STD))
             return false; // acquire again
         d_theta = world::wrap(r.bearing_rad);
+        if (d_cfg.adaptive_ground_track) // the bearing goes on: one more measurement
+            d_crab = d_track.update(mean_time(), d_theta, r.bearing_std_rad);
         d_sigma = std::max(r.residual_rms_hz, 1e-3);
         d_cfo = r.offset_hz;
         d_cfo_time = mean_time();
@@ -221,8 +230,11 @@ private:
     {
         const double g = d_cfg.adaptive_gain;
         const double n = 4.0 * d_cfg.adaptive_track_slots;
-        const double optimum =
-            std::pow(g / (2.0 - g) / n, 0.25) * std::sqrt(d_sigma / d_amp);
+        // The probe noise in units of sin(error) x sin(delta): the fit's white-noise
+        // figure sigma / (A sqrt(n)), or the scatter the cycles' bearings have shown if
+        // larger (gusts move the frequency coherently over a cycle).
+        const double noise = std::max(d_sigma / (d_amp * std::sqrt(n)), d_scatter);
+        const double optimum = std::pow(g / (2.0 - g), 0.25) * std::sqrt(noise);
         return std::clamp(std::max(optimum, std::abs(d_err)),
                           d_cfg.adaptive_delta_min_rad,
                           d_cfg.adaptive_delta_max_rad);
@@ -234,9 +246,10 @@ private:
         new_plan();
         d_delta = choose_delta();
         const int m = d_cfg.adaptive_track_slots;
+        d_centre = d_theta + d_crab;
         for (double s : { 1.0, -1.0, -1.0, 1.0 })
             for (int i = 0; i < m; ++i)
-                d_plan.push_back(d_theta + s * d_delta);
+                d_plan.push_back(d_centre + s * d_delta);
     }
 
     bool finish_cycle()
@@ -244,17 +257,25 @@ private:
         const int need = std::max(4, d_cfg.adaptive_track_slots);
         if (static_cast<int>(d_samples.size()) < need)
             return false; // too little: keep theta, probe again
+        // The fit is centred on the heading flown (theta + crab); err is the bearing
+        // seen from there, e the error of theta.
         const doppler_fit_result r =
-            fit_doppler_narrow(d_samples, d_theta, d_amp, d_cfg.adaptive_drift);
+            fit_doppler_narrow(d_samples, d_centre, d_amp, d_cfg.adaptive_drift);
         if (!r.ok)
             return false;
         const double t = mean_time();
         const double err = std::asin(std::clamp(r.sin_error, -1.0, 1.0));
+        const double e = d_crab + err; // |crab| < 90 deg, |err| <= 90 deg
         // Away check: the probe mean is the CFO + A (cos(theta~) cos(delta) - 1)-ish; far
         // below the tracked CFO means the emitter is behind.
         const double cfo_pred = d_cfo + d_drift * (t - d_cfo_time);
         const double level = r.offset_hz + d_amp * (1.0 - std::cos(err));
-        if (level - cfo_pred < -d_amp || std::abs(err) > d_cfg.adaptive_reacquire_rad ||
+        // Crabbed, the probe difference is already large: noise can carry it past
+        // the asin's range with theta still close. Such a cycle is left out.
+        if (d_crab != 0.0 && std::abs(r.sin_error) > 1.0 &&
+            std::abs(e) <= d_cfg.adaptive_reacquire_rad)
+            return false;
+        if (level - cfo_pred < -d_amp || std::abs(e) > d_cfg.adaptive_reacquire_rad ||
             std::abs(r.sin_error) > 1.0) {
             d_acquiring = true;
             return false;
@@ -264,8 +285,24 @@ private:
         if (d_cfg.adaptive_drift)
             d_drift = 0.5 * d_drift + 0.5 * r.drift_hz_per_s;
         d_sigma = 0.7 * d_sigma + 0.3 * std::max(r.residual_rms_hz, 1e-3);
-        d_err = err;
-        d_theta = world::wrap(d_theta + d_cfg.adaptive_gain * err);
+        // Scatter of successive bearings (each scaled by its probe's sin delta): the
+        // bearing noise the probes actually see.
+        const double bearing = world::wrap(d_centre + err);
+        if (d_cfg.adaptive_scatter_delta && d_have_bearing) {
+            const double diff =
+                std::min(std::abs(world::wrap(bearing - d_last_bearing)), 0.5);
+            const double v =
+                0.5 * diff * diff * std::sin(d_delta) * std::sin(d_last_delta);
+            d_scatter2 = d_scatter2 <= 0.0 ? v : 0.9 * d_scatter2 + 0.1 * v;
+            d_scatter = std::sqrt(d_scatter2);
+        }
+        d_have_bearing = true;
+        d_last_bearing = bearing;
+        d_last_delta = d_delta;
+        d_err = e;
+        d_theta = world::wrap(d_theta + d_cfg.adaptive_gain * e);
+        if (d_cfg.adaptive_ground_track)
+            d_crab = d_track.update(t, world::wrap(d_centre + err), r.bearing_std_rad);
         ++d_updates;
         return true;
     }
@@ -280,7 +317,12 @@ private:
 
     seeker_config d_cfg;
     outlier_filter d_filter;
-    const double d_amp; // f_d,max
+    ground_track_guidance d_track;
+    double d_crab = 0.0; // flown heading - bearing estimate (ground-track guidance)
+    bool d_have_bearing = false;
+    double d_last_bearing = 0.0, d_last_delta = 0.0, d_scatter2 = 0.0, d_scatter = 0.0;
+    double d_centre = 0.0; // the heading the probes of this cycle are flown around
+    const double d_amp;    // f_d,max
     bool d_started = false, d_acquiring = true, d_hold = false, d_turning = false;
     double d_theta = 0.0, d_model = 0.0, d_last_cmd = 0.0, d_hold_heading = 0.0;
     double d_acq_start = 0.0, d_acq_origin = 0.0, d_delta = 0.0, d_err = 0.0;

@@ -120,6 +120,9 @@ const std::vector<field>& fields()
         RFSEEK_FIELD(wind_gust_tau_s, kind::real),
         RFSEEK_FIELD(compass_bias_rad, kind::real),
         RFSEEK_FIELD(compass_noise_rad, kind::real),
+        RFSEEK_FIELD(wind_veer_rad_per_s, kind::real),
+        RFSEEK_FIELD(airspeed_error_mps, kind::real),
+        RFSEEK_FIELD(altimeter_error_m, kind::real),
         RFSEEK_FIELD(success_radius_m, kind::real),
         RFSEEK_FIELD(flight_cap_m, kind::optional_real),
         RFSEEK_FIELD(self_arrival, kind::boolean),
@@ -212,6 +215,19 @@ void scenario::validate() const
     require_range("wind_gust_tau_s", wind_gust_tau_s, 0.01, 3600.0);
     require_range("compass_bias_rad", compass_bias_rad, -M_PI, M_PI);
     require_range("compass_noise_rad", compass_noise_rad, 0.0, M_PI);
+    require_range("wind_veer_rad_per_s", wind_veer_rad_per_s, -1.0, 1.0);
+    require_finite("airspeed_error_mps", airspeed_error_mps);
+    if (!(speed_mps + airspeed_error_mps > 0.0) || std::abs(airspeed_error_mps) > 100.0)
+        bad("airspeed_error_mps",
+            airspeed_error_mps,
+            "in [-100, 100] m/s with speed_mps + airspeed_error_mps > 0 (the airspeed "
+            "the vehicle believes)");
+    require_finite("altimeter_error_m", altimeter_error_m);
+    if (!(altitude_m + altimeter_error_m >= 0.0) || std::abs(altimeter_error_m) > 1e4)
+        bad("altimeter_error_m",
+            altimeter_error_m,
+            "in [-1e4, 1e4] m with altitude_m + altimeter_error_m >= 0 (the altitude "
+            "the vehicle believes)");
     require_range("success_radius_m", success_radius_m, 0.0, initial_distance_m);
     if (flight_cap_m)
         require_positive("flight_cap_m", *flight_cap_m);
@@ -348,6 +364,19 @@ const std::vector<preset_def>& preset_table()
             { "wind_gust_tau_s", "5" },
             { "compass_bias_rad", "0.05235987755982988" },
             { "compass_noise_rad", "0.03490658503988659" },
+            { "turn_rate_rad_per_s", "0.5235987755982988" } } },
+        { "windy",
+          "a windier day than realistic: 120 m altitude (altimeter +15 m), 6 m/s wind "
+          "(2 m/s gusts, 15 s), 4 deg compass bias and 3 deg noise, airspeed believed "
+          "0.5 m/s high, 30 deg/s turns",
+          { { "altitude_m", "120" },
+            { "altimeter_error_m", "15" },
+            { "wind_speed_mps", "6" },
+            { "wind_gust_mps", "2" },
+            { "wind_gust_tau_s", "15" },
+            { "compass_bias_rad", "0.06981317007977318" },
+            { "compass_noise_rad", "0.05235987755982988" },
+            { "airspeed_error_mps", "0.5" },
             { "turn_rate_rad_per_s", "0.5235987755982988" } } },
     };
     return table;

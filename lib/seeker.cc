@@ -110,6 +110,14 @@ void seeker_config::validate() const
             "in [adaptive_delta_min_rad, pi/2)");
     if (!(adaptive_reacquire_rad > 0.0 && adaptive_reacquire_rad <= M_PI / 2))
         bad("adaptive_reacquire_rad", adaptive_reacquire_rad, "in (0, pi/2]");
+    if (!(ground_track_gain >= 0.0 && ground_track_gain <= 100.0))
+        bad("ground_track_gain", ground_track_gain, "in [0, 100]");
+    if (!(ground_track_max_crab_rad >= 0.0 && ground_track_max_crab_rad < M_PI / 2))
+        bad("ground_track_max_crab_rad", ground_track_max_crab_rad, "in [0, pi/2)");
+    if (!(ground_track_gate >= 0.0 && ground_track_gate <= 100.0))
+        bad("ground_track_gate", ground_track_gate, "in [0, 100]");
+    if (!(ground_track_rate_walk > 0.0 && ground_track_rate_walk <= 1.0))
+        bad("ground_track_rate_walk", ground_track_rate_walk, "in (0, 1] rad/s/sqrt(s)");
     if (!(arrival_swing >= 0.5 && arrival_swing <= 2.0))
         bad("arrival_swing",
             arrival_swing,
@@ -197,6 +205,13 @@ std::vector<std::string> seeker_config::keys()
              "adaptive_reacquire_rad",
              "adaptive_reacquire_deg",
              "adaptive_drift",
+             "adaptive_scatter_delta",
+             "adaptive_ground_track",
+             "ground_track_gain",
+             "ground_track_max_crab_rad",
+             "ground_track_max_crab_deg",
+             "ground_track_gate",
+             "ground_track_rate_walk",
              "self_arrival",
              "arrival_swing",
              "arrival_window_s",
@@ -324,6 +339,20 @@ void seeker_config::set(const std::string& key, const std::string& value)
         adaptive_reacquire_rad = number() * M_PI / 180.0;
     else if (key == "adaptive_drift")
         adaptive_drift = boolean();
+    else if (key == "adaptive_scatter_delta")
+        adaptive_scatter_delta = boolean();
+    else if (key == "adaptive_ground_track")
+        adaptive_ground_track = boolean();
+    else if (key == "ground_track_gain")
+        ground_track_gain = number();
+    else if (key == "ground_track_max_crab_rad")
+        ground_track_max_crab_rad = number();
+    else if (key == "ground_track_max_crab_deg")
+        ground_track_max_crab_rad = number() * M_PI / 180.0;
+    else if (key == "ground_track_gate")
+        ground_track_gate = number();
+    else if (key == "ground_track_rate_walk")
+        ground_track_rate_walk = number();
     else if (key == "self_arrival")
         self_arrival = boolean();
     else if (key == "arrival_swing")

@@ -55,11 +55,12 @@ seeker_config simulation::seeker_for(const scenario& sc, const std::string& stra
 {
     seeker_config c;
     c.strategy = strategy;
-    c.speed_mps = sc.speed_mps;
+    // What the vehicle believes of itself: the truth plus the scenario's sensor errors.
+    c.speed_mps = sc.speed_mps + sc.airspeed_error_mps;
     c.carrier_hz = sc.carrier_hz;
     c.slot_period_s = sc.slot_period_s;
     c.turn_rate_rad_per_s = sc.turn_rate_rad_per_s;
-    c.locate_altitude_m = sc.altitude_m; // the autopilot's altitude hold, exact
+    c.locate_altitude_m = sc.altitude_m + sc.altimeter_error_m; // the altimeter's
     c.seed = sc.seed;
     c.self_arrival = sc.self_arrival;
     return c;
@@ -164,6 +165,10 @@ run_result simulation::run(bool keep_records) const
         d_sc.self_arrival && w.reached() ? w.reached_flown_m() : w.distance_flown_m();
     s.shortest_path_m = d_sc.shortest_path_m();
     s.ratio = s.shortest_path_m > 0.0 ? s.distance_m / s.shortest_path_m : 0.0;
+    s.straight_air_m = w.straight_air_m();
+    s.straight_ratio = s.straight_air_m > 0.0 && std::isfinite(s.straight_air_m)
+                           ? s.distance_m / s.straight_air_m
+                           : 0.0;
     s.time_s = w.time_s();
     s.success = d_sc.self_arrival ? w.reached() : w.arrived();
     s.slots = w.slot();

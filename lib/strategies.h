@@ -13,6 +13,7 @@
 #ifndef INCLUDED_RFSEEK_STRATEGIES_H
 #define INCLUDED_RFSEEK_STRATEGIES_H
 
+#include "ground_track.h"
 #include "outlier_filter.h"
 #include <gr-rfseek/seeker.h>
 #include <memory>
@@ -35,6 +36,17 @@ inline outlier_filter make_outlier_filter(const seeker_config& cfg)
                           cfg.lock_count,
                           cfg.relock_count,
                           cfg.min_snr_db);
+}
+
+//! The ground-track guidance as a strategy's configuration asks for it.
+inline ground_track_guidance make_ground_track(const seeker_config& cfg)
+{
+    ground_track_config g;
+    g.gain = cfg.ground_track_gain;
+    g.max_crab_rad = cfg.ground_track_max_crab_rad;
+    g.gate = cfg.ground_track_gate;
+    g.rate_walk = cfg.ground_track_rate_walk;
+    return ground_track_guidance(g);
 }
 
 } // namespace rfseek

@@ -19,6 +19,7 @@
 #include <volk/volk.h>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <string>
 
@@ -84,6 +85,22 @@ world::world(const scenario& sc) : d_sc(sc)
         d_gust_y = d_sc.wind_gust_mps * w.normal();
     }
     draw_compass_error(0); // the start heading, as the compass reads it
+
+    // The straight ground line's air distance: ground speed g along the line of sight
+    // with the air velocity crabbed so that the crosswind cancels, v^2 = (g - w_par)^2 +
+    // w_perp^2, for the path d - d_v.
+    const double path = d_sc.shortest_path_m();
+    d_straight_air = path;
+    if (d_wind_x != 0.0 || d_wind_y != 0.0) {
+        const double d = std::hypot(d_x, d_y);
+        const double ux = -d_x / d, uy = -d_y / d;
+        const double w_par = d_wind_x * ux + d_wind_y * uy;
+        const double w_perp = -d_wind_x * uy + d_wind_y * ux;
+        const double v = d_sc.speed_mps;
+        const double disc = v * v - w_perp * w_perp;
+        const double g = disc > 0.0 ? w_par + std::sqrt(disc) : 0.0;
+        d_straight_air = g > 0.0 ? path * v / g : std::numeric_limits<double>::infinity();
+    }
 
     update_amplitude();
     draw_measured_heading();
@@ -336,6 +353,13 @@ void world::advance(double commanded_heading_rad)
     if (d_wind_x != 0.0 || d_wind_y != 0.0 || d_sc.wind_gust_mps > 0.0) {
         d_x += (d_wind_x + d_gust_x) * dt;
         d_y += (d_wind_y + d_gust_y) * dt;
+        if (d_sc.wind_veer_rad_per_s != 0.0) { // the mean wind's direction turns
+            const double c = std::cos(d_sc.wind_veer_rad_per_s * dt);
+            const double s = std::sin(d_sc.wind_veer_rad_per_s * dt);
+            const double wx = d_wind_x;
+            d_wind_x = c * wx - s * d_wind_y;
+            d_wind_y = s * wx + c * d_wind_y;
+        }
         if (d_sc.wind_gust_mps > 0.0) {
             rng w(d_sc.seed, STREAM_WIND, d_slot + 1);
             const double a = std::exp(-dt / d_sc.wind_gust_tau_s);

@@ -69,6 +69,12 @@ struct RFSEEK_API scenario {
     double wind_gust_tau_s = 5.0;   //!< gust correlation time
     double compass_bias_rad = 0.0;  //!< flown = commanded + bias + noise (reported: not)
     double compass_noise_rad = 0.0; //!< white per slot
+    //! The mean wind's direction turns at this rate (rad/s, + counter-clockwise).
+    double wind_veer_rad_per_s = 0.0;
+    // What the vehicle believes of itself (docs/world.md "What the vehicle believes"):
+    // simulation::seeker_for hands the seeker the truth plus these errors.
+    double airspeed_error_mps = 0.0; //!< believed airspeed - speed_mps
+    double altimeter_error_m = 0.0;  //!< believed altitude - altitude_m
     // Run
     double success_radius_m = 200.0;    //!< d_v
     std::optional<double> flight_cap_m; //!< default 4 (d - d_v)
@@ -107,7 +113,8 @@ struct RFSEEK_API scenario {
     /*!
      * Named scenario variants, kept here for programs, tests and docs alike:
      * reference, turn30, start1km, start10km, speed20, drift2, drift10, snr-15, snr-22,
-     * hard, realistic. A preset is a list of set() overrides on the reference scenario.
+     * hard, realistic, windy. A preset is a list of set() overrides on the reference
+     * scenario.
      */
     static std::vector<std::string> presets();
     //! The overrides of a preset, as (key, value) pairs for set().

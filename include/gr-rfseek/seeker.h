@@ -85,6 +85,20 @@ struct RFSEEK_API seeker_config {
     //! Estimated errors beyond this (or flying away) start a new acquisition.
     double adaptive_reacquire_rad = 1.0471975511965976; //!< 60 deg
     bool adaptive_drift = true; //!< fit (and so cancel) a linear CFO drift per cycle
+    //! Size delta for the bearing scatter the cycles show when it exceeds the fit's
+    //! white-noise figure (gusts); false: the white-noise figure only.
+    bool adaptive_scatter_delta = true;
+    // Guidance over the ground (docs/seeker.md "Guidance over the ground"): fly the
+    // bearing plus a crab, adapted as in proportional navigation (crab change =
+    // ground_track_gain x bearing change) until the bearing stops turning: a straight
+    // ground track in any wind below the airspeed, without knowing the wind or the range.
+    bool adaptive_ground_track = true; //!< `adaptive` crabs into the wind
+    double ground_track_gain = 2.0;    //!< K (navigation constant N = K + 1)
+    double ground_track_max_crab_rad = 0.8726646259971648; //!< |crab| limit (50 deg)
+    //! The crab moves while the estimated bearing rate exceeds this many std.
+    double ground_track_gate = 1.0;
+    //! Random walk of the bearing rate in its Kalman filter (rad/s per sqrt(s)).
+    double ground_track_rate_walk = 5.0e-5;
     // Arrival without truth (docs/seeker.md "Arrival and location"), any strategy.
     //! Detect the overflight, loiter on an orbit and locate the emitter; false: fly the
     //! strategy only (the paper's runs end at the simulator's d_v).

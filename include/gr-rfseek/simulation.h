@@ -58,6 +58,12 @@ struct RFSEEK_API run_summary {
     double distance_m = 0.0;      //!< flown, Stage-1 circle included
     double shortest_path_m = 0.0; //!< d - d_v
     double ratio = 0.0;           //!< distance_m / shortest_path_m
+    //! Air distance of the straight ground line to d_v in the mean wind at the start
+    //! (world::straight_air_m; shortest_path_m in calm air).
+    double straight_air_m = 0.0;
+    //! distance_m / straight_air_m: 1 for the straight ground track whatever the wind
+    //! (ratio in calm air; 0 when the wind blows faster than the airspeed against it).
+    double straight_ratio = 0.0;
     double time_s = 0.0;
     bool success = false; //!< arrived within d_v before the flight cap
     std::uint64_t slots = 0;

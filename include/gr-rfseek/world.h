@@ -65,7 +65,17 @@ public:
     double ground_vy_mps() const;
     //! Compass error of the heading flown in this slot (flown - commanded).
     double compass_error_rad() const { return d_compass_err; }
+    //! Distance flown through the air (what the battery pays).
     double distance_flown_m() const { return d_flown; }
+    /*!
+     * What the straight ground line costs: the air distance a vehicle pays flying the
+     * straight ground track from the start to d_v, crabbed into the mean wind at the
+     * start (d - d_v in calm air; infinity when that wind blows it back).
+     */
+    double straight_air_m() const { return d_straight_air; }
+    //! The mean wind now (without gusts), m/s.
+    double wind_east_mps() const { return d_wind_x; }
+    double wind_north_mps() const { return d_wind_y; }
     //! Bearing from the UAV toward the emitter.
     double bearing_to_emitter_rad() const;
     //! Carrier offset f_o at the start of this slot, and its linear drift rate a.
@@ -154,6 +164,7 @@ private:
     double d_cfo_hz = 0.0, d_cfo_drift = 0.0, d_cfo_phase = 0.0;
     double d_amp = 0.0, d_noise_power = 0.0;
     double d_wind_x = 0.0, d_wind_y = 0.0; // mean wind
+    double d_straight_air = 0.0;
     double d_gust_x = 0.0, d_gust_y = 0.0; // gusts (Gauss-Markov), this slot
     double d_compass_err = 0.0;            // flown - commanded, this slot
     bool d_arrived = false, d_capped = false, d_reached = false, d_ended = false;

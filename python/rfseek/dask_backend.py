@@ -9,7 +9,7 @@ This program connects to the Dask scheduler (or starts a LocalCluster of N worke
 processes), prints ``READY <workers>``, sends chunks of runs (one study point, one
 strategy, a range of seeds) to the workers and prints one line per run as chunks finish:
 
-    ROW <job> <distance_m> <ratio> <time_s> <success> <slots> <has_stage1> <stage1_rad>
+    ROW <job> <distance_m> <ratio> <straight_ratio> <time_s> <success> <slots> <has_stage1> <stage1_rad>
         <self_arrival> <declared> <detect_m> <false_arrival> <located> <loc_error_m>
         <loc_major_m> <in_ellipse> <overflight> <overflight_distance_m>
     ERR <job> <message>
@@ -50,8 +50,8 @@ def run_chunk(spec, strategy, jobs):
     for job, seed in jobs:
         try:
             s = p.run(strategy, int(seed))
-            out.append("ROW %d %r %r %r %d %d %d %r %d %d %r %d %d %r %r %d %d %r" % (
-                job, s.distance_m, s.ratio, s.time_s, int(s.success), s.slots,
+            out.append("ROW %d %r %r %r %r %d %d %d %r %d %d %r %d %d %r %r %d %d %r" % (
+                job, s.distance_m, s.ratio, s.straight_ratio, s.time_s, int(s.success), s.slots,
                 int(s.has_stage1), s.stage1_heading_error_rad, int(s.self_arrival),
                 int(s.declared), s.arrival_detect_distance_m, int(s.false_arrival),
                 int(s.located), s.location_error_m, s.location_major_m,

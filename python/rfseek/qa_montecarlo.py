@@ -231,9 +231,9 @@ class qa_montecarlo(gr_unittest.TestCase):
         self.assertTrue(os.path.getsize(os.path.join(self.tmp, "pr_presets.png")) > 1000)
         self.assertIn("| drift10 |", plot.stdout)
         # An unknown preset is refused by name.
-        p, _ = run_mc(self.tmp, "bad", "--preset", "reference,windy")
+        p, _ = run_mc(self.tmp, "bad", "--preset", "reference,stormy")
         self.assertEqual(p.returncode, 2)
-        self.assertIn("windy", p.stderr)
+        self.assertIn("stormy", p.stderr)
 
     def test_bad_options_exit_2_with_a_message(self):
         for args, word in ((["--runs", "0"], "--runs"),

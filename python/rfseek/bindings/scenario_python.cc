@@ -4,7 +4,7 @@
  */
 
 /* BINDTOOL_HEADER_FILE(scenario.h) */
-/* BINDTOOL_HEADER_FILE_HASH(32b72ba5024536db3ab8491779dc7791) */
+/* BINDTOOL_HEADER_FILE_HASH(f2e34d0e68314cd0e0728aa9d0b6b6df) */
 
 #include "kwargs.h"
 #include <gr-rfseek/scenario.h>
@@ -61,6 +61,11 @@ void bind_scenario(py::module& m)
     RW(wind_gust_tau_s, "gust correlation time (s)");
     RW(compass_bias_rad, "compass bias: flown heading = commanded + bias + noise (rad)");
     RW(compass_noise_rad, "compass noise on the flown heading, white per slot (rad)");
+    RW(wind_veer_rad_per_s, "the mean wind's direction turns at this rate (rad/s, CCW)");
+    RW(airspeed_error_mps,
+       "airspeed the vehicle believes minus the one it flies (m/s; seeker_for adds it)");
+    RW(altimeter_error_m,
+       "altitude the vehicle believes minus the true one (m; seeker_for adds it)");
     RW(success_radius_m, "d_v (m)");
     RW(flight_cap_m, "flight cap (m); None = 4 (d - d_v)");
     RW(self_arrival,

@@ -4,7 +4,7 @@
  */
 
 /* BINDTOOL_HEADER_FILE(seeker.h) */
-/* BINDTOOL_HEADER_FILE_HASH(01368ccfbf248a962ae5faea3c9356e7) */
+/* BINDTOOL_HEADER_FILE_HASH(1540701af32e4e81054c2554ab26aa5e) */
 
 #include "kwargs.h"
 #include <gr-rfseek/seeker.h>
@@ -69,6 +69,19 @@ void bind_seeker(py::module& m)
     RW(adaptive_reacquire_rad,
        "adaptive: errors beyond this start a new acquisition (rad)");
     RW(adaptive_drift, "adaptive: fit a linear CFO drift per probe cycle");
+    RW(adaptive_scatter_delta,
+       "adaptive: size delta for the bearing scatter of the cycles when larger than the "
+       "fit's white-noise figure (gusts)");
+    RW(adaptive_ground_track,
+       "adaptive: crab into the wind until the bearing stops turning (a straight ground "
+       "track)");
+    RW(ground_track_gain,
+       "ground track: crab change per bearing change (proportional navigation N - 1)");
+    RW(ground_track_max_crab_rad, "ground track: |crab| limit (rad)");
+    RW(ground_track_gate,
+       "ground track: the crab moves while the bearing rate exceeds this many std");
+    RW(ground_track_rate_walk,
+       "ground track: random walk of the bearing rate in its filter (rad/s/sqrt(s))");
     RW(self_arrival,
        "detect the overflight, loiter and locate the emitter (any strategy); False: the "
        "strategy only");

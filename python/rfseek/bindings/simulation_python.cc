@@ -4,7 +4,7 @@
  */
 
 /* BINDTOOL_HEADER_FILE(simulation.h) */
-/* BINDTOOL_HEADER_FILE_HASH(f43971c9628eb535aae18b683a706d9d) */
+/* BINDTOOL_HEADER_FILE_HASH(c101f784d1edf4c818ba165a3a983a02) */
 
 #include <gr-rfseek/simulation.h>
 #include <pybind11/numpy.h>
@@ -40,6 +40,8 @@ void bind_simulation(py::module& m)
         .def_readonly("distance_m", &run_summary::distance_m)
         .def_readonly("shortest_path_m", &run_summary::shortest_path_m)
         .def_readonly("ratio", &run_summary::ratio)
+        .def_readonly("straight_air_m", &run_summary::straight_air_m)
+        .def_readonly("straight_ratio", &run_summary::straight_ratio)
         .def_readonly("time_s", &run_summary::time_s)
         .def_readonly("success", &run_summary::success)
         .def_readonly("slots", &run_summary::slots)

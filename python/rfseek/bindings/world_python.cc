@@ -4,7 +4,7 @@
  */
 
 /* BINDTOOL_HEADER_FILE(world.h) */
-/* BINDTOOL_HEADER_FILE_HASH(c523593f7e171217c344551b8c243929) */
+/* BINDTOOL_HEADER_FILE_HASH(e72b6abacc3b9181eef84e94e30e97c3) */
 
 #include <gr-rfseek/world.h>
 #include <pybind11/complex.h>
@@ -39,6 +39,9 @@ void bind_world(py::module& m)
         .def_property_readonly("measured_heading_rad", &world::measured_heading_rad)
         .def_property_readonly("distance_m", &world::distance_m)
         .def_property_readonly("distance_flown_m", &world::distance_flown_m)
+        .def_property_readonly("straight_air_m", &world::straight_air_m)
+        .def_property_readonly("wind_east_mps", &world::wind_east_mps)
+        .def_property_readonly("wind_north_mps", &world::wind_north_mps)
         .def_property_readonly("bearing_to_emitter_rad", &world::bearing_to_emitter_rad)
         .def_property_readonly("cfo_hz", &world::cfo_hz)
         .def_property_readonly("cfo_drift_hz_per_s", &world::cfo_drift_hz_per_s)

@@ -1,0 +1,205 @@
+/*
+ * Copyright 2026 gr-rfseek authors.
+ * SPDX-License-Identifier: GPL-3.0-or-later
+ *
+ * Guidance over the ground (lib/ground_track.h) against the closed-form wind triangle:
+ * a vehicle at airspeed v in a constant wind w flies bearing + crab, the bearing measured
+ * from the geometry every probe cycle. After convergence the crab is the wind
+ * triangle's, sin c* = -w_perp / v, and the ground track points at the emitter; a head-
+ * or tailwind gives no crab. Then the world's new fields (what the vehicle believes of
+ * itself, the straight ground line's cost, a veering wind) and the `windy` preset.
+ */
+
+#include "ground_track.h"
+#include <gr-rfseek/scenario.h>
+#include <gr-rfseek/simulation.h>
+#include <gr-rfseek/world.h>
+#include <gtest/gtest.h>
+#include <cmath>
+#include <random>
+#include <stdexcept>
+
+using namespace gr::rfseek;
+
+namespace {
+
+constexpr double DEG = M_PI / 180.0;
+constexpr double V = 10.0;    // airspeed
+constexpr double CYCLE = 4.0; // s between bearing measurements (a probe cycle)
+constexpr double STEP = 0.05; // s of integration
+
+struct flight {
+    double x, y;        // vehicle; the emitter is at the origin
+    double crab = 0.0;  // at the end
+    double track = 0.0; // ground-track direction at the end
+    double bearing = 0.0;
+    double wind_perp = 0.0; // the wind across the line of sight at the end (left +)
+};
+
+// Flies from (x0, 0) toward the emitter in the wind (wx, wy) until within stop_m;
+// bearings measured exactly (or with white noise of noise_rad) every CYCLE s.
+flight fly(double x0, double wx, double wy, double stop_m, double noise_rad = 0.0)
+{
+    ground_track_guidance g;
+    std::mt19937_64 rng(7);
+    std::normal_distribution<double> n01;
+    flight f{ x0, 0.0 };
+    double crab = 0.0, t = 0.0, next = 0.0;
+    while (std::hypot(f.x, f.y) > stop_m && t < 3600.0) {
+        const double beta = std::atan2(-f.y, -f.x);
+        if (t >= next - 1e-9) {
+            crab = g.update(t, beta + noise_rad * n01(rng), 0.01);
+            next += CYCLE;
+        }
+        const double psi = beta + crab;
+        const double gx = V * std::cos(psi) + wx, gy = V * std::sin(psi) + wy;
+        f.x += gx * STEP;
+        f.y += gy * STEP;
+        t += STEP;
+        f.track = std::atan2(gy, gx);
+        f.bearing = beta;
+        f.wind_perp = -wx * std::sin(beta) + wy * std::cos(beta);
+    }
+    f.crab = crab;
+    return f;
+}
+
+double wrap(double a) { return std::remainder(a, 2.0 * M_PI); }
+
+} // namespace
+
+TEST(ground_track, crosswind_from_either_side_gives_the_wind_triangle)
+{
+    // Emitter due west of the start; wind blowing north or south at 3, 5 and 7 m/s.
+    for (double w : { 3.0, 5.0, 7.0 })
+        for (double side : { 1.0, -1.0 }) {
+            const flight f = fly(8000.0, 0.0, side * w, 300.0);
+            const double expected = std::asin(-f.wind_perp / V);
+            EXPECT_NEAR(f.crab, expected, 1.0 * DEG) << "wind " << side * w;
+            // Straight ground track at the emitter: the track is the bearing.
+            EXPECT_NEAR(wrap(f.track - f.bearing), 0.0, 1.0 * DEG) << "wind " << side * w;
+            // and the crab is into the wind.
+            EXPECT_LT(f.crab * f.wind_perp, 0.0);
+        }
+}
+
+TEST(ground_track, head_and_tailwind_give_no_crab)
+{
+    for (double w : { -7.0, -3.0, 3.0, 7.0 }) { // along the line of sight (x axis)
+        const flight f = fly(5000.0, w, 0.0, 300.0);
+        EXPECT_EQ(f.crab, 0.0) << "wind " << w;
+        EXPECT_NEAR(wrap(f.track - f.bearing), 0.0, 1e-9);
+    }
+}
+
+TEST(ground_track, noisy_bearings_converge_and_calm_air_stays_near_zero)
+{
+    // 3 deg of white bearing noise per cycle.
+    const flight calm = fly(5000.0, 0.0, 0.0, 300.0, 3.0 * DEG);
+    EXPECT_LT(std::abs(calm.crab), 3.0 * DEG);
+    const flight windy = fly(8000.0, 0.0, 5.0, 1500.0, 3.0 * DEG);
+    EXPECT_NEAR(windy.crab, std::asin(-windy.wind_perp / V), 3.0 * DEG);
+}
+
+TEST(ground_track, limits_and_bad_input)
+{
+    ground_track_config c;
+    c.max_crab_rad = 20.0 * DEG;
+    ground_track_guidance g(c);
+    // A bearing turning at 1 deg/s for 200 s: the crab stops at its limit, and moves at
+    // most max_crab_rate per second on the way.
+    double prev = 0.0;
+    for (int k = 0; k <= 50; ++k) {
+        const double crab = g.update(4.0 * k, 4.0 * k * DEG, 0.01);
+        EXPECT_LE(std::abs(crab - prev), c.max_crab_rate * 4.0 + 1e-12);
+        EXPECT_LE(std::abs(crab), c.max_crab_rad + 1e-12);
+        prev = crab;
+    }
+    EXPECT_NEAR(g.crab_rad(), c.max_crab_rad, 1e-12);
+    EXPECT_GT(g.bearing_rate_rad_per_s(), 0.5 * DEG);
+    // NaN, infinity and repeated times change nothing.
+    const double before = g.crab_rad();
+    EXPECT_EQ(g.update(NAN, 0.0, 0.01), before);
+    EXPECT_EQ(g.update(300.0, INFINITY, 0.01), before);
+    EXPECT_EQ(g.update(200.0, 0.0, NAN), before); // not later than the last time
+    g.reset();
+    EXPECT_EQ(g.crab_rad(), 0.0);
+    EXPECT_FALSE(g.started());
+}
+
+TEST(world, straight_line_cost_is_the_wind_triangle)
+{
+    scenario sc;
+    sc.start_angle_rad = 0.0; // start on +x: the line of sight points to -x
+    sc.wind_speed_mps = 6.0;
+    const double path = sc.shortest_path_m();
+    sc.wind_to_rad = M_PI; // tailwind
+    EXPECT_NEAR(world(sc).straight_air_m(), path * V / (V + 6.0), 1e-6);
+    sc.wind_to_rad = 0.0; // headwind
+    EXPECT_NEAR(world(sc).straight_air_m(), path * V / (V - 6.0), 1e-6);
+    sc.wind_to_rad = M_PI / 2; // crosswind
+    EXPECT_NEAR(world(sc).straight_air_m(), path * V / std::sqrt(V * V - 36.0), 1e-6);
+    sc.wind_speed_mps = 12.0; // a headwind beyond the airspeed: never
+    sc.wind_to_rad = 0.0;
+    EXPECT_TRUE(std::isinf(world(sc).straight_air_m()));
+    scenario calm;
+    EXPECT_EQ(world(calm).straight_air_m(), calm.shortest_path_m());
+}
+
+TEST(world, wind_veers_at_the_stated_rate)
+{
+    scenario sc;
+    sc.wind_speed_mps = 5.0;
+    sc.wind_to_rad = 0.3;
+    sc.wind_veer_rad_per_s = 0.01;
+    world w(sc);
+    for (int k = 0; k < 400; ++k)
+        w.advance(w.heading_rad());
+    const double expected = 0.3 + 0.01 * 400 * sc.slot_period_s;
+    EXPECT_NEAR(std::atan2(w.wind_north_mps(), w.wind_east_mps()), expected, 1e-9);
+    EXPECT_NEAR(std::hypot(w.wind_north_mps(), w.wind_east_mps()), 5.0, 1e-9);
+}
+
+TEST(world, the_vehicle_believes_truth_plus_its_sensor_errors)
+{
+    scenario sc;
+    sc.apply_preset("windy");
+    const seeker_config c = simulation::seeker_for(sc, "adaptive");
+    EXPECT_DOUBLE_EQ(c.speed_mps, sc.speed_mps + 0.5);
+    EXPECT_DOUBLE_EQ(c.locate_altitude_m, 120.0 + 15.0);
+    EXPECT_DOUBLE_EQ(sc.wind_speed_mps, 6.0);
+    EXPECT_DOUBLE_EQ(sc.wind_gust_mps, 2.0);
+    EXPECT_DOUBLE_EQ(sc.wind_gust_tau_s, 15.0);
+    // The world flies the true airspeed: 10 m/s of air per second.
+    world w(sc);
+    w.advance(0.0);
+    EXPECT_NEAR(w.distance_flown_m(), sc.speed_mps * sc.slot_period_s, 1e-12);
+    // Defaults: the truth, exactly.
+    const scenario ref;
+    const seeker_config r = simulation::seeker_for(ref, "adaptive");
+    EXPECT_EQ(r.speed_mps, ref.speed_mps);
+    EXPECT_EQ(r.locate_altitude_m, ref.altitude_m);
+}
+
+TEST(scenario, bad_belief_and_veer_fields_are_named)
+{
+    auto message = [](const std::string& key, const std::string& value) {
+        scenario s;
+        s.set(key, value);
+        try {
+            s.validate();
+        } catch (const std::invalid_argument& e) {
+            return std::string(e.what());
+        }
+        return std::string();
+    };
+    EXPECT_NE(message("airspeed_error_mps", "-10").find("airspeed_error_mps"),
+              std::string::npos);
+    EXPECT_NE(message("airspeed_error_mps", "nan").find("airspeed_error_mps"),
+              std::string::npos);
+    EXPECT_NE(message("altimeter_error_m", "-1").find("altimeter_error_m"),
+              std::string::npos); // altitude 0: a negative belief
+    EXPECT_NE(message("wind_veer_rad_per_s", "2").find("wind_veer_rad_per_s"),
+              std::string::npos);
+    EXPECT_EQ(message("altimeter_error_m", "30"), "");
+}

@@ -60,8 +60,6 @@ public:
     double bearing_rate_std() const;
     bool started() const { return d_started; }
 
-    //! Forget the bearing (a new acquisition: the estimate may jump); keep the crab.
-    void restart() { d_started = false; }
     //! Forget everything, crab included.
     void reset();
 

@@ -76,6 +76,73 @@ bool solve(const std::array<std::array<double, N>, N>& a, std::array<double, N>&
 
 } // namespace
 
+// ---------------------------------------------------------------- doppler_amplitude
+
+void doppler_amplitude::add(double time_s, double heading_rad, double freq_hz)
+{
+    if (std::isfinite(time_s) && std::isfinite(heading_rad) && std::isfinite(freq_hz) &&
+        d_m.size() < 20000)
+        d_m.push_back({ time_s, heading_rad, freq_hz });
+}
+
+double doppler_amplitude::amplitude() const
+{
+    const std::size_t n = d_m.size();
+    if (n < 8)
+        return NAN;
+    // The headings must go all round (no gap of 120 deg), as for the detector's
+    // amplitude: a part of a turn leaves p and q tied to c.
+    std::vector<double> h;
+    for (const auto& q : d_m)
+        h.push_back(wrap_remainder(q[1]));
+    std::sort(h.begin(), h.end());
+    double gap = h.front() + 2.0 * M_PI - h.back();
+    for (std::size_t i = 1; i < h.size(); ++i)
+        gap = std::max(gap, h[i] - h[i - 1]);
+    if (!(gap < 2.0 * M_PI / 3.0))
+        return NAN;
+    const double t0 = d_m.front()[0];
+    auto row = [&](const std::array<double, 3>& q, double r[4]) {
+        r[0] = 1.0;
+        r[1] = (q[0] - t0) / 60.0;
+        r[2] = std::cos(q[1]);
+        r[3] = std::sin(q[1]);
+    };
+    std::vector<char> use(n, 1);
+    std::vector<double> res(n), in;
+    double amp = NAN;
+    for (int round = 0; round < 3; ++round) {
+        std::array<std::array<double, 4>, 4> a{};
+        std::array<double, 4> x{};
+        for (std::size_t k = 0; k < n; ++k) {
+            if (!use[k])
+                continue;
+            double r[4];
+            row(d_m[k], r);
+            for (int i = 0; i < 4; ++i) {
+                x[i] += r[i] * d_m[k][2];
+                for (int j = 0; j < 4; ++j)
+                    a[i][j] += r[i] * r[j];
+            }
+        }
+        if (!solve(a, x))
+            return NAN;
+        amp = std::hypot(x[2], x[3]);
+        in.clear();
+        for (std::size_t k = 0; k < n; ++k) {
+            double r[4];
+            row(d_m[k], r);
+            res[k] = std::abs(d_m[k][2] - x[0] - x[1] * r[1] - x[2] * r[2] - x[3] * r[3]);
+            if (use[k])
+                in.push_back(res[k]);
+        }
+        const double lim = std::max(4.0 * 1.4826 * median(in), 5.0);
+        for (std::size_t k = 0; k < n; ++k)
+            use[k] = res[k] <= lim;
+    }
+    return amp;
+}
+
 // ---------------------------------------------------------------- overflight_detector
 
 overflight_detector::overflight_detector(const overflight_config& cfg) : d_cfg(cfg)

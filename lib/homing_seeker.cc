@@ -119,6 +119,35 @@ private:
         return 2.0 * M_PI * d_cfg.loiter_radius_m / d_cfg.speed_mps;
     }
 
+    /*
+     * Whether the first orbit is checked (arrival_far_amplitude): only when the vehicle
+     * flies at least MIN_FAR_CHECK_ALTITUDE_M up (locate_altitude_m). Near the emitter
+     * the line of sight is then steep and an orbit's Doppler swings much less than far
+     * away (0.7 f_d,max 100 m off at 100 m height); in a flat world an orbit 50 m off
+     * already swings by 0.94 f_d,max and nothing tells it from one 5 km out.
+     */
+    bool far_check() const
+    {
+        return d_cfg.arrival_far_amplitude > 0.0 &&
+               d_cfg.locate_altitude_m >= MIN_FAR_CHECK_ALTITUDE_M;
+    }
+
+    // Back to seeking: the strategy resumes where it was; the detector starts anew.
+    command resume_seeking(const measurement& m)
+    {
+        d_status = 0;
+        d_loitering = false;
+        d_detector.reset();
+        d_locator.clear();
+        d_centred = false;
+        d_x = d_y = 0.0;
+        d_first_orbit.clear();
+        d_next_fit_s = d_cfg.locate_orbits * orbit_s();
+        command r = d_inner->update(m);
+        r.status = 0;
+        return r;
+    }
+
     // Orbit the estimate l from now on (in the air frame it drifts with minus the
     // wind). Returns the time to fly to its orbit.
     double retarget(const emitter_location& l, double t)
@@ -191,6 +220,8 @@ private:
         d_last_heading = h;
         const bool usable = m.valid && m.snr_db >= d_cfg.min_snr_db &&
                             std::isfinite(m.freq_hz) && !d_done;
+        if (usable && !d_centred)
+            d_first_orbit.add(m.time_s, h, m.freq_hz);
         if (usable)
             d_locator.add(m.time_s,
                           d_x,
@@ -205,6 +236,12 @@ private:
         if (d_pending.valid) { // confirmed in the previous slot: publish the fix now
             publish_fix(d_pending, c);
             d_pending = emitter_location();
+        } else if (!d_done && loitered >= d_next_fit_s && !d_centred && far_check() &&
+                   d_first_orbit.amplitude() >=
+                       d_cfg.arrival_far_amplitude * d_cfg.max_doppler_hz()) {
+            // The first orbit's Doppler swings as far from the emitter: a false
+            // overflight (a gust, a turn). Seek on at once.
+            return resume_seeking(m);
         } else if (!d_done && loitered >= d_next_fit_s) {
             const emitter_location l = d_locator.fit(d_x, d_y);
             // A fit is steered by once its ellipse fits in the locator's search area
@@ -244,20 +281,10 @@ private:
             d_next_fit_s = loitered + next * orbit_s();
         }
         if (!d_done && !d_pending.valid && loitered >= d_deadline_s) {
-            if (d_cfg.locate_retry) {
-                // No fix: not the emitter's overflight after all, or too poor a
-                // geometry: seek again (the strategy resumes where it was), detect anew.
-                d_status = 0;
-                d_loitering = false;
-                d_detector.reset();
-                d_locator.clear();
-                d_centred = false;
-                d_x = d_y = 0.0;
-                d_next_fit_s = d_cfg.locate_orbits * orbit_s();
-                command r = d_inner->update(m);
-                r.status = 0;
-                return r;
-            }
+            // No fix: not the emitter's overflight after all, or too poor a geometry:
+            // seek again (the strategy resumes where it was), detect anew.
+            if (d_cfg.locate_retry)
+                return resume_seeking(m);
             d_done = true;
         }
         d_heading_cmd = d_centred
@@ -313,10 +340,11 @@ private:
     std::unique_ptr<seeker> d_inner;
     overflight_detector d_detector;
     emitter_locator d_locator;
-    static constexpr double SEARCH_RADIUS_M = 600.0; // the locator's grid extent
-    static constexpr double MAX_WIND_FRACTION = 0.6; // of the airspeed
-    static constexpr int MAX_RETARGETS = 6;          // moves of the orbited estimate that
-                                                     // extend the time allowed
+    static constexpr double SEARCH_RADIUS_M = 600.0;         // the locator's grid extent
+    static constexpr double MAX_WIND_FRACTION = 0.9;         // of the airspeed
+    static constexpr double MIN_FAR_CHECK_ALTITUDE_M = 50.0; // far_check()
+    static constexpr int MAX_RETARGETS = 6; // moves of the orbited estimate that
+                                            // extend the time allowed
     int d_status = 0;
     bool d_loitering = false; // stage 3: orbiting (checking, arrived or located)
     bool d_done = false;
@@ -332,6 +360,7 @@ private:
     double d_target_x = 0.0, d_target_y = 0.0,
            d_target_t = 0.0;               // the estimate, air frame
     double d_wind_x = 0.0, d_wind_y = 0.0; // estimated wind
+    doppler_amplitude d_first_orbit;       // the first orbit's measurements
 };
 
 } // namespace

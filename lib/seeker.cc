@@ -134,6 +134,10 @@ void seeker_config::validate() const
         bad("arrival_confirm_blocks", arrival_confirm_blocks, "in [1, 1000]");
     if (!(arrival_encircle >= 0.0 && arrival_encircle <= 1.0))
         bad("arrival_encircle", arrival_encircle, "in [0, 1] (x f_d,max; 0: off)");
+    if (!(arrival_far_amplitude >= 0.0 && arrival_far_amplitude <= 2.0))
+        bad("arrival_far_amplitude",
+            arrival_far_amplitude,
+            "in [0, 2] (x f_d,max; 0: off)");
     if (!(arrival_confirm_m >= 0.0 && arrival_confirm_m <= 1e5))
         bad("arrival_confirm_m", arrival_confirm_m, "in [0, 1e5] m (0: no confirmation)");
     if (!(loiter_radius_m >= speed_mps * slot_period_s / M_PI && loiter_radius_m <= 1e5))
@@ -221,6 +225,7 @@ std::vector<std::string> seeker_config::keys()
              "arrival_block_slots",
              "arrival_confirm_blocks",
              "arrival_encircle",
+             "arrival_far_amplitude",
              "arrival_confirm_m",
              "loiter_radius_m",
              "locate_orbits",
@@ -371,6 +376,8 @@ void seeker_config::set(const std::string& key, const std::string& value)
         arrival_confirm_blocks = integer();
     else if (key == "arrival_encircle")
         arrival_encircle = number();
+    else if (key == "arrival_far_amplitude")
+        arrival_far_amplitude = number();
     else if (key == "arrival_confirm_m")
         arrival_confirm_m = number();
     else if (key == "loiter_radius_m")

@@ -20,6 +20,7 @@
 #define INCLUDED_RFSEEK_ARRIVAL_H
 
 #include <gr-rfseek/api.h>
+#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -43,6 +44,31 @@ struct RFSEEK_API overflight_config {
     //! Encircling: detected also when, over drift_s with headings all round, the
     //! far-field Doppler amplitude stays below this x f_d,max (0: off).
     double encircle_amplitude = 0.35;
+};
+
+/*!
+ * The Doppler amplitude of a turn: F = c + d t + p cos(psi) + q sin(psi) fitted by
+ * least squares (then twice more without the measurements beyond 4 robust sigmas, at
+ * least 5 Hz) to the measurements of a turn, psi the measured heading; the amplitude
+ * is hypot(p, q). Far from the emitter, where every path arrives from one bearing, it
+ * is f_d,max (the airspeed's; the wind only adds to c); within a few heights of the
+ * emitter it is much less, the line of sight being steep and turning with the vehicle.
+ * The homing seeker fits its first orbit after an overflight with it
+ * (seeker_config::arrival_far_amplitude).
+ */
+class RFSEEK_API doppler_amplitude
+{
+public:
+    //! One measurement (non-finite ones are skipped; at most 20000 are kept).
+    void add(double time_s, double heading_rad, double freq_hz);
+    void clear() { d_m.clear(); }
+    std::size_t size() const { return d_m.size(); }
+    //! The fitted amplitude (Hz); NaN with fewer than 8 measurements or headings
+    //! that do not go all round (a gap of 120 deg or more).
+    double amplitude() const;
+
+private:
+    std::vector<std::array<double, 3>> d_m; // time, heading, frequency
 };
 
 /*!

@@ -112,6 +112,10 @@ struct RFSEEK_API seeker_config {
     //! Encircling signature: headings all round over 120 s with the far-field Doppler
     //! amplitude below this x f_d,max (0: off; docs/seeker.md).
     double arrival_encircle = 0.35;
+    //! A loiter whose first orbit shows a Doppler amplitude of at least this x
+    //! f_d,max is a false overflight (the emitter is far): seek on at once (0: off;
+    //! checked only with locate_altitude_m >= 50 m, docs/seeker.md).
+    double arrival_far_amplitude = 0.9;
     double loiter_radius_m = 25.0; //!< orbit radius (turn rate v / R, to the left)
     //! Arrival is declared when a location fit falls within this distance of the
     //! estimate the vehicle orbits (m); 0: declared on the overflight alone.

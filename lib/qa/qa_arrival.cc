@@ -217,6 +217,76 @@ TEST(overflight_detector, ignores_unusable_measurements_and_validates)
 namespace {
 
 /*
+ * doppler_amplitude on one air-frame orbit (radius 25 m, 15.7 s, to the left) with the
+ * emitter at horizontal distance d from the orbit's centre, height h, a CFO with drift
+ * and a constant wind (the orbit drifts with it): the exact Doppler
+ * (v + w) . u / lambda, u the unit line of sight. Far away every path has the bearing of
+ * the centre: the amplitude is f_d,max (the wind only adds a constant). An orbit
+ * centred on the emitter has its velocity across the line of sight: amplitude 0 but for
+ * the wind's drift.
+ */
+double orbit_amplitude(double d, double h, double wind, double outliers = 0.0)
+{
+    const double R = 25.0, w = V / R;
+    rng g(77);
+    doppler_amplitude amp;
+    for (int k = 0; k * T < 2.0 * M_PI / w; ++k) {
+        const double t = k * T, psi = 0.3 + w * t;
+        // Vehicle: circle to the left around (d, 0), drifting with the wind (east).
+        const double x = d + R * std::sin(psi) + wind * t, y = -R * std::cos(psi);
+        const double vx = V * std::cos(psi) + wind, vy = V * std::sin(psi);
+        const double rx = -x, ry = -y, s = std::sqrt(rx * rx + ry * ry + h * h);
+        double f = 300.0 + 0.2 * t + (vx * rx + vy * ry) / (LAMBDA * s) + g.normal();
+        if (g.uniform() < outliers)
+            f += g.uniform() < 0.5 ? 400.0 : -400.0;
+        amp.add(t, psi, f);
+    }
+    return amp.amplitude();
+}
+
+TEST(doppler_amplitude, is_f_d_max_far_away_and_collapses_over_the_emitter)
+{
+    EXPECT_NEAR(orbit_amplitude(5000.0, 100.0, 0.0), A, 0.01 * A);
+    EXPECT_NEAR(orbit_amplitude(5000.0, 100.0, 6.0), A, 0.01 * A);
+    // Centred: the wind's 6 m/s drift moves the orbit 94 m off centre over the turn.
+    EXPECT_LT(orbit_amplitude(0.0, 100.0, 0.0), 0.05 * A);
+    EXPECT_LT(orbit_amplitude(0.0, 100.0, 6.0), 0.6 * A);
+    // 100 m off at 100 m height: well below the 0.9 f_d,max of arrival_far_amplitude.
+    EXPECT_LT(orbit_amplitude(100.0, 100.0, 0.0), 0.8 * A);
+    // Increasing with the distance.
+    double prev = 0.0;
+    for (double d : { 0.0, 50.0, 100.0, 200.0, 400.0, 1000.0 }) {
+        const double a = orbit_amplitude(d, 100.0, 0.0);
+        EXPECT_GT(a, prev) << d;
+        prev = a;
+    }
+    // 10 % outliers of +-400 Hz are rejected.
+    EXPECT_NEAR(orbit_amplitude(5000.0, 100.0, 0.0, 0.1), A, 0.02 * A);
+}
+
+TEST(doppler_amplitude, needs_a_whole_turn)
+{
+    doppler_amplitude amp;
+    EXPECT_TRUE(std::isnan(amp.amplitude()));
+    for (int k = 0; k < 400; ++k) // straight: no amplitude to fit
+        amp.add(k * T, 0.5 + 0.01 * std::sin(k), 100.0 + k % 3);
+    EXPECT_TRUE(std::isnan(amp.amplitude()));
+    amp.clear();
+    for (int k = 0; k < 300; ++k) // half a turn: a gap of 180 deg
+        amp.add(k * T, M_PI * k / 300.0, 100.0 + A * std::cos(M_PI * k / 300.0));
+    EXPECT_TRUE(std::isnan(amp.amplitude()));
+    amp.add(NAN, 0.0, 1.0);
+    amp.add(1.0, INFINITY, 1.0);
+    amp.add(1.0, 0.0, NAN);
+    EXPECT_EQ(amp.size(), 300u);
+    for (int k = 0; k < 300; ++k) // the other half: now all round
+        amp.add(15.0 + k * T,
+                M_PI + M_PI * k / 300.0,
+                100.0 - A * std::cos(M_PI * k / 300.0));
+    EXPECT_NEAR(amp.amplitude(), A, 1e-6 * A);
+}
+
+/*
  * A synthetic orbit flown in the air frame: radius R around (ox, oy) (air frame), wind
  * (wx, wy), emitter fixed on the ground at (ex, ey) at t = 0, height h. The locator gets
  * the air-frame (dead-reckoned) positions and air velocities and the frequencies the

@@ -167,6 +167,30 @@ class qa_montecarlo(gr_unittest.TestCase):
         self.assertGreaterEqual(inside["map"], 0.7 * len(e))
         self.assertLessEqual(inside["const"], 0.5 * len(errs["const"]))
 
+    def test_arrival_self_windy(self):
+        # The windy preset (6 m/s wind, 2 m/s gusts of 15 s, compass, altimeter and
+        # airspeed errors) with the locator's defaults, 30 adaptive runs at relaxed
+        # bounds. Gusts there drop the Doppler like an overflight kilometres out; the
+        # first orbit's far-field amplitude (arrival_far_amplitude) sends the vehicle on
+        # at once, where without it each such loiter costs minutes of flight.
+        rows = {}
+        for name, extra in (("check", []),
+                            ("nocheck", ["--set", "arrival_far_amplitude=0"])):
+            p, out = run_mc(self.tmp, "windy_" + name, "--runs", "30", "--strategy",
+                            "adaptive", "--preset", "windy", "--arrival", "self",
+                            "--threads", "2", "--quiet", *extra)
+            self.assertEqual(p.returncode, 0, p.stderr)
+            rows[name] = json.load(open(out))["rows"]
+            self.assertEqual(len(rows[name]), 30)
+        r = rows["check"]
+        self.assertGreaterEqual(sum(x["success"] for x in r), 28)
+        self.assertLessEqual(sum(x["false_arrival"] for x in r), 3)
+        near = [x for x in r if x["declared"] and x["arrival_detect_distance_m"] <= 300.0]
+        self.assertGreaterEqual(len(near), 15)
+        line = {k: statistics.mean(x["straight_ratio"] for x in v)
+                for k, v in rows.items()}
+        self.assertLess(line["check"], 0.9 * line["nocheck"])
+
     def test_rows_do_not_depend_on_thread_count(self):
         args = ["--runs", "6", "--seed", "11", "--strategy", "paper,rss_baseline",
                 "--set", "flight_cap_m=4000"] + SHORT

@@ -4,7 +4,7 @@
  */
 
 /* BINDTOOL_HEADER_FILE(arrival.h) */
-/* BINDTOOL_HEADER_FILE_HASH(5568a544fd9e5f698fb3b8484109fa70) */
+/* BINDTOOL_HEADER_FILE_HASH(79d85a911938245822721c334218f8af) */
 
 #include <gr-rfseek/arrival.h>
 #include <pybind11/pybind11.h>
@@ -28,6 +28,21 @@ void bind_arrival(py::module& m)
         .def_readwrite("confirm_blocks", &overflight_config::confirm_blocks)
         .def_readwrite("min_snr_db", &overflight_config::min_snr_db)
         .def_readwrite("encircle_amplitude", &overflight_config::encircle_amplitude);
+
+    py::class_<doppler_amplitude>(
+        m,
+        "doppler_amplitude",
+        "The Doppler amplitude of a turn: hypot(p, q) of c + d t + p cos(psi) + q "
+        "sin(psi) fitted robustly; f_d,max far from the emitter, much less near it.")
+        .def(py::init<>())
+        .def("add",
+             &doppler_amplitude::add,
+             py::arg("time_s"),
+             py::arg("heading_rad"),
+             py::arg("freq_hz"))
+        .def("clear", &doppler_amplitude::clear)
+        .def("__len__", &doppler_amplitude::size)
+        .def_property_readonly("amplitude", &doppler_amplitude::amplitude);
 
     py::class_<overflight_detector>(
         m,

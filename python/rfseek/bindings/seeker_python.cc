@@ -4,7 +4,7 @@
  */
 
 /* BINDTOOL_HEADER_FILE(seeker.h) */
-/* BINDTOOL_HEADER_FILE_HASH(1540701af32e4e81054c2554ab26aa5e) */
+/* BINDTOOL_HEADER_FILE_HASH(e09f7e4cd9902a667128388e10c5ffe4) */
 
 #include "kwargs.h"
 #include <gr-rfseek/seeker.h>
@@ -95,6 +95,9 @@ void bind_seeker(py::module& m)
     RW(arrival_encircle,
        "encircling: headings all round over 120 s with the far-field Doppler amplitude "
        "below this x f_d,max (0: off)");
+    RW(arrival_far_amplitude,
+       "a loiter whose first orbit shows a Doppler amplitude of at least this x "
+       "f_d,max is a false overflight: seek on at once (0: off)");
     RW(arrival_confirm_m,
        "arrival is declared when a location fit falls within this distance of the "
        "estimate orbited, by the vehicle (m; 0: on the overflight alone)");

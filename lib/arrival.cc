@@ -74,6 +74,73 @@ bool solve(const std::array<std::array<double, N>, N>& a, std::array<double, N>&
     return true;
 }
 
+//! True if the headings (rad) go all round: no gap of 120 deg or more between them.
+bool goes_all_round(std::vector<double> h)
+{
+    if (h.empty())
+        return false;
+    for (double& a : h)
+        a = wrap_remainder(a);
+    std::sort(h.begin(), h.end());
+    double gap = h.front() + 2.0 * M_PI - h.back();
+    for (std::size_t i = 1; i < h.size(); ++i)
+        gap = std::max(gap, h[i] - h[i - 1]);
+    return gap < 2.0 * M_PI / 3.0;
+}
+
+/*
+ * Least squares of the far-field model F = c + d u + p cos(psi) + q sin(psi), u = (t -
+ * t_ref) / 60 s, over samples (t, psi, F) with use set; ridge * (samples used) is added
+ * to the p and q diagonal (0: none). x = (c, d, p, q); a is the normal matrix (ridge
+ * included), kept for standard errors.
+ */
+struct harmonic_fit {
+    std::array<std::array<double, 4>, 4> a{};
+    std::array<double, 4> x{};
+    double t_ref = 0.0;
+    int used = 0;
+
+    void row(const std::array<double, 3>& q, double r[4]) const
+    {
+        r[0] = 1.0;
+        r[1] = (q[0] - t_ref) / 60.0;
+        r[2] = std::cos(q[1]);
+        r[3] = std::sin(q[1]);
+    }
+    double model(const std::array<double, 3>& q) const
+    {
+        double r[4];
+        row(q, r);
+        return x[0] + x[1] * r[1] + x[2] * r[2] + x[3] * r[3];
+    }
+    bool solve(const std::vector<std::array<double, 3>>& s,
+               const std::vector<char>& use,
+               double t_reference,
+               double ridge)
+    {
+        t_ref = t_reference;
+        a = {};
+        std::array<double, 4> y{};
+        used = 0;
+        for (std::size_t k = 0; k < s.size(); ++k) {
+            if (!use[k])
+                continue;
+            double r[4];
+            row(s[k], r);
+            for (int i = 0; i < 4; ++i) {
+                y[i] += r[i] * s[k][2];
+                for (int j = 0; j < 4; ++j)
+                    a[i][j] += r[i] * r[j];
+            }
+            ++used;
+        }
+        for (int i = 2; i < 4; ++i)
+            a[i][i] += ridge * used;
+        x = y;
+        return rfseek::solve(a, x);
+    }
+};
+
 } // namespace
 
 // ---------------------------------------------------------------- doppler_amplitude
@@ -90,49 +157,25 @@ double doppler_amplitude::amplitude() const
     const std::size_t n = d_m.size();
     if (n < 8)
         return NAN;
-    // The headings must go all round (no gap of 120 deg), as for the detector's
-    // amplitude: a part of a turn leaves p and q tied to c.
+    // The headings must go all round, as for the detector's amplitude: a part of a
+    // turn leaves p and q tied to c.
     std::vector<double> h;
     for (const auto& q : d_m)
-        h.push_back(wrap_remainder(q[1]));
-    std::sort(h.begin(), h.end());
-    double gap = h.front() + 2.0 * M_PI - h.back();
-    for (std::size_t i = 1; i < h.size(); ++i)
-        gap = std::max(gap, h[i] - h[i - 1]);
-    if (!(gap < 2.0 * M_PI / 3.0))
+        h.push_back(q[1]);
+    if (!goes_all_round(h))
         return NAN;
     const double t0 = d_m.front()[0];
-    auto row = [&](const std::array<double, 3>& q, double r[4]) {
-        r[0] = 1.0;
-        r[1] = (q[0] - t0) / 60.0;
-        r[2] = std::cos(q[1]);
-        r[3] = std::sin(q[1]);
-    };
     std::vector<char> use(n, 1);
     std::vector<double> res(n), in;
     double amp = NAN;
     for (int round = 0; round < 3; ++round) {
-        std::array<std::array<double, 4>, 4> a{};
-        std::array<double, 4> x{};
-        for (std::size_t k = 0; k < n; ++k) {
-            if (!use[k])
-                continue;
-            double r[4];
-            row(d_m[k], r);
-            for (int i = 0; i < 4; ++i) {
-                x[i] += r[i] * d_m[k][2];
-                for (int j = 0; j < 4; ++j)
-                    a[i][j] += r[i] * r[j];
-            }
-        }
-        if (!solve(a, x))
+        harmonic_fit fit;
+        if (!fit.solve(d_m, use, t0, 0.0))
             return NAN;
-        amp = std::hypot(x[2], x[3]);
+        amp = std::hypot(fit.x[2], fit.x[3]);
         in.clear();
         for (std::size_t k = 0; k < n; ++k) {
-            double r[4];
-            row(d_m[k], r);
-            res[k] = std::abs(d_m[k][2] - x[0] - x[1] * r[1] - x[2] * r[2] - x[3] * r[3]);
+            res[k] = std::abs(d_m[k][2] - fit.model(d_m[k]));
             if (use[k])
                 in.push_back(res[k]);
         }
@@ -231,64 +274,39 @@ bool overflight_detector::update(double time_s,
 overflight_detector::far_field overflight_detector::fit_far_field(const block& b) const
 {
     far_field out{ NAN, NAN };
-    std::vector<const block*> w{ &b };
-    for (std::size_t i = d_blocks.size(); i-- > 0;) {
-        if (b.time_s - d_blocks[i].time_s > d_cfg.drift_s)
+    std::vector<std::array<double, 3>> s; // the usable blocks of the last drift_s
+    for (std::size_t i = d_blocks.size() + 1; i-- > 0;) {
+        const block& q = i == d_blocks.size() ? b : d_blocks[i];
+        if (b.time_s - q.time_s > d_cfg.drift_s)
             break;
-        w.push_back(&d_blocks[i]);
-    }
-    auto row = [&](const block* q, double r[4]) {
-        r[0] = 1.0;
-        r[1] = (q->time_s - b.time_s) / 60.0;
-        r[2] = std::cos(q->heading_rad);
-        r[3] = std::sin(q->heading_rad);
-    };
-    std::array<std::array<double, 4>, 4> a{};
-    std::array<double, 4> y{};
-    std::vector<double> headings;
-    int used = 0;
-    for (const block* q : w) {
-        if (!q->usable)
-            continue;
-        double r[4];
-        row(q, r);
-        for (int i = 0; i < 4; ++i) {
-            y[i] += r[i] * q->freq_hz;
-            for (int k = 0; k < 4; ++k)
-                a[i][k] += r[i] * r[k];
-        }
-        headings.push_back(q->heading_rad);
-        ++used;
+        if (q.usable)
+            s.push_back({ q.time_s, q.heading_rad, q.freq_hz });
     }
     // At least half of drift_s of usable blocks: a short history (the start of a
     // flight, its first manoeuvres) gives no trustworthy drift.
     const double block_s = d_cfg.block_slots * d_cfg.slot_period_s;
-    if (used < std::max(10.0, 0.5 * d_cfg.drift_s / block_s))
+    if (s.size() < std::max(10.0, 0.5 * d_cfg.drift_s / block_s))
         return out;
-    for (int i = 2; i < 4; ++i)
-        a[i][i] += 1e-3 * used;
-    std::array<double, 4> x = y, e1{ 0.0, 1.0, 0.0, 0.0 };
-    if (!solve(a, x) || !solve(a, e1))
+    harmonic_fit fit;
+    const std::vector<char> use(s.size(), 1);
+    std::array<double, 4> e1{ 0.0, 1.0, 0.0, 0.0 };
+    if (!fit.solve(s, use, b.time_s, 1e-3) || !solve(fit.a, e1))
         return out;
     double ss = 0.0;
-    for (const block* q : w) {
-        if (!q->usable)
-            continue;
-        double r[4];
-        row(q, r);
-        const double e = q->freq_hz - (x[0] + x[1] * r[1] + x[2] * r[2] + x[3] * r[3]);
+    for (const auto& q : s) {
+        const double e = q[2] - fit.model(q);
         ss += e * e;
     }
     // Shrunk toward zero by two standard errors: an uncertain drift corrects nothing.
+    const int used = fit.used;
     const double se = std::sqrt(std::max(ss / std::max(used - 4, 1), 0.0) * e1[1]);
-    const double d = x[1], mag = std::max(std::abs(d) - 2.0 * se, 0.0);
+    const double d = fit.x[1], mag = std::max(std::abs(d) - 2.0 * se, 0.0);
     out.drift = (d < 0.0 ? -mag : mag) / 60.0;
-    std::sort(headings.begin(), headings.end());
-    double gap = headings.front() + 2.0 * M_PI - headings.back();
-    for (std::size_t i = 1; i < headings.size(); ++i)
-        gap = std::max(gap, headings[i] - headings[i - 1]);
-    if (gap < 2.0 * M_PI / 3.0)
-        out.amplitude = std::hypot(x[2], x[3]);
+    std::vector<double> headings;
+    for (const auto& q : s)
+        headings.push_back(q[1]);
+    if (goes_all_round(headings))
+        out.amplitude = std::hypot(fit.x[2], fit.x[3]);
     return out;
 }
 

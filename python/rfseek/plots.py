@@ -235,22 +235,46 @@ def comparison_chart(result, paper=None, path=None):
     return fig
 
 
-def sweep_plot(result, path=None):
-    """Ratio (mean, p90) and success rate versus the swept parameter, per strategy."""
+def in_wind(result):
+    """True if the result's rows flew in wind (their straight-line ratio differs from the
+    plain ratio): then the fair measure is the straight-line ratio, the air distance
+    over the air distance of the straight ground line in the same wind (1 for a straight
+    ground track, whatever the wind)."""
+    return any("straight_ratio" in r and "error" not in r
+               and r["straight_ratio"] != r["ratio"] for r in result["rows"])
+
+
+def sweep_metric(result, metric="auto"):
+    """(JSON key prefix, axis label) of the ratio a sweep is drawn and tabled with:
+    metric "ratio" (distance over the shortest path), "straight_ratio" or "auto"
+    (straight_ratio when the rows flew in wind)."""
+    if metric not in ("auto", "ratio", "straight_ratio"):
+        raise ValueError("metric must be auto, ratio or straight_ratio, not %r" % metric)
+    if metric == "auto":
+        metric = "straight_ratio" if in_wind(result) else "ratio"
+    if metric == "straight_ratio":
+        return "straight_ratio", "air distance / straight ground line's"
+    return "ratio", "distance / shortest path"
+
+
+def sweep_plot(result, path=None, metric="auto"):
+    """Ratio (mean, p90) and success rate versus the swept parameter, per strategy. In
+    wind (metric "auto") the ratio is the straight-line ratio (sweep_metric)."""
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
+    key, label = sweep_metric(result, metric)
     sw = result["sweep"]
     xs = [float(v) for v in sw["values"]]
     fig, (a1, a2) = plt.subplots(2, 1, figsize=(7, 6), sharex=True)
     for name in result["strategies"]:
-        mean = [e[name]["mean_ratio"] for e in sw["summary"]]
-        p90 = [e[name]["p90_ratio"] for e in sw["summary"]]
+        mean = [e[name]["mean_" + key] for e in sw["summary"]]
+        p90 = [e[name]["p90_" + key] for e in sw["summary"]]
         ok = [100 * e[name]["success_rate"] for e in sw["summary"]]
         line, = a1.plot(xs, mean, "o-", label="%s mean" % name)
         a1.plot(xs, p90, "s--", color=line.get_color(), alpha=0.6, label="%s p90" % name)
         a2.plot(xs, ok, "o-", color=line.get_color(), label=name)
-    a1.set_ylabel("distance / shortest path")
+    a1.set_ylabel(label)
     a1.grid(alpha=0.3)
     a1.legend(fontsize=8)
     a1.set_title("sweep of %s, %d runs per point" % (sw["key"], result["runs"]), fontsize=10)
@@ -262,6 +286,24 @@ def sweep_plot(result, path=None):
     if path:
         fig.savefig(path, dpi=110)
     return fig
+
+
+def sweep_table(result, metric="auto"):
+    """The sweep as Markdown: a row per strategy, a column per swept value, cells
+    "mean / p90 (success)" of the ratio sweep_metric picks."""
+    key, label = sweep_metric(result, metric)
+    sw = result["sweep"]
+    lines = ["| %s (%s) | " % (sw["key"], label) +
+             " | ".join(str(v) for v in sw["values"]) + " |",
+             "| --- |" + " --- |" * len(sw["values"])]
+    for name in result["strategies"]:
+        cells = []
+        for e in sw["summary"]:
+            s = e[name]
+            ok = ("%.1f" % (100 * s["success_rate"])).replace("100.0", "100")
+            cells.append("%.3f / %.3f (%s %%)" % (s["mean_" + key], s["p90_" + key], ok))
+        lines.append("| `%s` mean / p90 (success) | " % name + " | ".join(cells) + " |")
+    return "\n".join(lines)
 
 
 def preset_plot(result, path=None, ymax=1.6):

@@ -215,6 +215,34 @@ class qa_montecarlo(gr_unittest.TestCase):
                               capture_output=True, text=True)
         self.assertEqual(plot.returncode, 0, plot.stderr)
 
+    def test_wind_sweep_uses_the_straight_line_ratio(self):
+        # In calm air the straight-line ratio is the plain ratio; in wind the sweep's
+        # figure and table use it (the air distance of the straight ground line is not
+        # the shortest path's).
+        from gnuradio.rfseek import plots
+        p, out = run_mc(self.tmp, "wsw", "--runs", "2", "--strategy", "adaptive",
+                        "--sweep", "wind_speed_mps=0,5", *SHORT)
+        self.assertEqual(p.returncode, 0, p.stderr)
+        res = json.load(open(out))
+        calm = [r for r in res["rows"] if r["sweep_value"] == "0"]
+        windy = [r for r in res["rows"] if r["sweep_value"] == "5"]
+        for r in calm:
+            self.assertEqual(r["straight_ratio"], r["ratio"])
+        for r in windy:
+            self.assertNotEqual(r["straight_ratio"], r["ratio"])
+        self.assertEqual(plots.sweep_metric(res)[0], "straight_ratio")
+        self.assertEqual(plots.sweep_metric(res, "ratio")[0], "ratio")
+        with self.assertRaises(ValueError):
+            plots.sweep_metric(res, "speed")
+        plot = subprocess.run([sys.executable, os.path.join(SOURCE, "apps",
+                                                            "rfseek-plot-montecarlo"), out,
+                               "--table"], capture_output=True, text=True)
+        self.assertEqual(plot.returncode, 0, plot.stderr)
+        rows = [l for l in plot.stdout.splitlines() if l.startswith("| `adaptive`")]
+        self.assertEqual(len(rows), 1)
+        mean5 = res["sweep"]["summary"][1]["adaptive"]["mean_straight_ratio"]
+        self.assertIn("%.3f" % mean5, rows[0].split("|")[3])
+
     def test_presets(self):
         from gnuradio import rfseek
         p = subprocess.run([MC, "--preset", "list"], capture_output=True, text=True)

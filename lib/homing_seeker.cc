@@ -132,6 +132,17 @@ private:
                d_cfg.locate_altitude_m >= MIN_FAR_CHECK_ALTITUDE_M;
     }
 
+    // A fit whose height contradicts the altimeter (beyond HEIGHT_SIGMAS x its stated
+    // accuracy) is not trusted: an orbit far from the emitter swings its Doppler by
+    // about f_d,max, which a near emitter only explains with the height run down to
+    // a few metres. Without a height prior every fit passes.
+    bool height_agrees(const emitter_location& l) const
+    {
+        const double s = d_cfg.locate_altitude_sigma_m;
+        return !(s > 0.0 && std::isfinite(d_cfg.locate_altitude_m)) ||
+               std::abs(l.altitude_m - d_cfg.locate_altitude_m) <= HEIGHT_SIGMAS * s;
+    }
+
     // Back to seeking: the strategy resumes where it was; the detector starts anew.
     command resume_seeking(const measurement& m)
     {
@@ -246,7 +257,8 @@ private:
             const emitter_location l = d_locator.fit(d_x, d_y);
             // A fit is steered by once its ellipse fits in the locator's search area
             // (one orbit far from the emitter can run off to kilometres).
-            const bool usable = l.valid && l.major_m <= SEARCH_RADIUS_M;
+            const bool usable =
+                l.valid && l.major_m <= SEARCH_RADIUS_M && height_agrees(l);
             double next = usable ? d_cfg.locate_orbits : 0.25;
             if (usable) {
                 // Arrived once the estimate agrees with the one orbited (carried with
@@ -343,6 +355,7 @@ private:
     static constexpr double SEARCH_RADIUS_M = 600.0;         // the locator's grid extent
     static constexpr double MAX_WIND_FRACTION = 0.9;         // of the airspeed
     static constexpr double MIN_FAR_CHECK_ALTITUDE_M = 50.0; // far_check()
+    static constexpr double HEIGHT_SIGMAS = 3.0;             // height_agrees()
     static constexpr int MAX_RETARGETS = 6; // moves of the orbited estimate that
                                             // extend the time allowed
     int d_status = 0;

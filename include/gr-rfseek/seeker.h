@@ -129,16 +129,18 @@ struct RFSEEK_API seeker_config {
     //! A fix is published (located) when its 95 % ellipse's semi-major axis is below.
     double locate_max_axis_m = 100.0;
     //! Gust prior of the location fit: std per axis (m/s; 0: a constant wind only) and
-    //! correlation time (s) of a first-order Gauss-Markov gust (docs/seeker.md).
-    double locate_gust_mps = 1.0;
-    double locate_gust_tau_s = 5.0;
+    //! correlation time (s) of a first-order Gauss-Markov gust. The defaults are wide
+    //! on purpose: they keep the 95 % ellipse honest for gusts from 0 to 2.5 m/s and
+    //! 2 to 30 s (docs/seeker.md, "The locator across the envelope").
+    double locate_gust_mps = 1.5;
+    double locate_gust_tau_s = 4.0;
     //! The vehicle's height above the ground the emitter stands on, as its altimeter /
     //! autopilot holds it (m; NaN: unknown): the location fit's prior on the height,
-    //! with std locate_altitude_sigma_m (m; 0: the height is fitted freely). The
-    //! simulation copies the scenario's altitude_m (a perfect altimeter; set this after
-    //! seeker_for to study a wrong one).
+    //! with std locate_altitude_sigma_m, the altimeter's stated accuracy (m; 0: the
+    //! height is fitted freely). The simulation gives it the scenario's altitude_m plus
+    //! its altimeter_error_m.
     double locate_altitude_m = std::numeric_limits<double>::quiet_NaN();
-    double locate_altitude_sigma_m = 10.0;
+    double locate_altitude_sigma_m = 20.0;
 
     double max_doppler_hz() const;
     double effective_outlier_threshold_hz() const;

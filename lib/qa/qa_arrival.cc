@@ -547,6 +547,35 @@ TEST(homing_seeker, a_far_overflight_is_confirmed_only_by_the_emitter)
     }
 }
 
+TEST(homing_seeker, a_fit_whose_height_contradicts_the_altimeter_is_not_trusted)
+{
+    // realistic with 2.5 m/s gusts of 5 s, adaptive, seed 51: a gust sets the detector
+    // off 4.5 km from the emitter and the first orbit's amplitude (0.90 f_d,max) just
+    // passes the far check. The fits then place the emitter under the orbit with the
+    // height run down to 10-18 m (altimeter: 100 +- 20 m), which the arrival used to
+    // confirm 4.5 km out. With the height check the loiter finds no fix, the vehicle
+    // seeks on and arrives by the emitter.
+    scenario sc;
+    sc.apply_preset("realistic");
+    sc.wind_gust_mps = 2.5;
+    sc.wind_gust_tau_s = 5.0;
+    sc.seed = 51;
+    sc.self_arrival = true;
+    const seeker_config cfg = simulation::seeker_for(sc, "adaptive");
+    ASSERT_EQ(cfg.locate_altitude_sigma_m, 20.0);
+    const run_result r = simulation(sc, cfg).run(true);
+    const slot_record* loiter = nullptr;
+    for (const slot_record& q : r.records)
+        if (!loiter && q.stage == 3)
+            loiter = &q;
+    ASSERT_TRUE(loiter);
+    EXPECT_GT(loiter->distance_m, 1000.0); // the false overflight happened
+    EXPECT_TRUE(r.summary.declared);
+    EXPECT_FALSE(r.summary.false_arrival);
+    EXPECT_LT(r.summary.arrival_detect_distance_m, 300.0);
+    EXPECT_TRUE(r.summary.success);
+}
+
 TEST(homing_seeker, without_a_fix_seeks_again_or_gives_up)
 {
     // A fix can never be good enough (95 % ellipse under 1 mm): with locate_retry the

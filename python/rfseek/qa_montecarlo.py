@@ -172,7 +172,9 @@ class qa_montecarlo(gr_unittest.TestCase):
         # airspeed errors) with the locator's defaults, 30 adaptive runs at relaxed
         # bounds. Gusts there drop the Doppler like an overflight kilometres out; the
         # first orbit's far-field amplitude (arrival_far_amplitude) sends the vehicle on
-        # at once, where without it each such loiter costs minutes of flight.
+        # at once, where without it each such loiter costs minutes of flight (seeds
+        # 1-30: mean line ratio 1.21 with the check, 1.29 without; the height check
+        # ends some of those loiters too, so the difference is smaller than it was).
         rows = {}
         for name, extra in (("check", []),
                             ("nocheck", ["--set", "arrival_far_amplitude=0"])):
@@ -189,7 +191,24 @@ class qa_montecarlo(gr_unittest.TestCase):
         self.assertGreaterEqual(len(near), 15)
         line = {k: statistics.mean(x["straight_ratio"] for x in v)
                 for k, v in rows.items()}
-        self.assertLess(line["check"], 0.9 * line["nocheck"])
+        self.assertLess(line["check"], 0.96 * line["nocheck"])
+
+    def test_locator_is_honest_in_gusts_unlike_its_prior(self):
+        # The locator's gust prior (1.5 m/s, 4 s by default) is not the air's: realistic
+        # with 1 m/s gusts of 30 s, 30 adaptive runs. The 95 % ellipse must still hold
+        # the emitter in most located runs (the envelope table in docs/seeker.md: 88-98 %
+        # on 200 runs), while staying small enough to mean something.
+        p, out = run_mc(self.tmp, "honest", "--runs", "30", "--strategy", "adaptive",
+                        "--preset", "realistic", "--arrival", "self", "--threads", "2",
+                        "--set", "wind_gust_mps=1", "--set", "wind_gust_tau_s=30",
+                        "--quiet")
+        self.assertEqual(p.returncode, 0, p.stderr)
+        rows = [r for r in json.load(open(out))["rows"] if r["located"]]
+        self.assertGreaterEqual(len(rows), 28)
+        inside = sum(r["location_in_ellipse"] for r in rows)
+        self.assertGreaterEqual(inside, 0.8 * len(rows))
+        self.assertLessEqual(statistics.median(r["location_error_m"] for r in rows), 25.0)
+        self.assertLessEqual(statistics.median(r["location_major_m"] for r in rows), 60.0)
 
     def test_rows_do_not_depend_on_thread_count(self):
         args = ["--runs", "6", "--seed", "11", "--strategy", "paper,rss_baseline",

@@ -4,7 +4,7 @@
  */
 
 /* BINDTOOL_HEADER_FILE(seeker.h) */
-/* BINDTOOL_HEADER_FILE_HASH(e09f7e4cd9902a667128388e10c5ffe4) */
+/* BINDTOOL_HEADER_FILE_HASH(84cad8e2bfd725ad34a650e45f88a2e4) */
 
 #include "kwargs.h"
 #include <gr-rfseek/seeker.h>

@@ -752,6 +752,31 @@ struct gust_fit {
         return cost;
     }
 
+    // The number of parameters the data fit at th, trace((J^T J + s2 E^T E)^-1 J^T J):
+    // m for free parameters, less as the priors hold them (gust states the prior
+    // keeps near zero count for little). The residual variance is SS / (n - this - 2).
+    double effective_params(const std::vector<double>& th, double s2) const
+    {
+        std::vector<double> N0, N, g, r;
+        build(th, 0.0, N0, g, r); // J^T J
+        build(th, s2, N, g, r);
+        double scale = 0.0;
+        for (std::size_t q = 0; q < m; ++q)
+            scale = std::max(scale, N[q * m + q]);
+        for (std::size_t q = 0; q < m; ++q)
+            N[q * m + q] += 1e-9 * scale + 1e-12;
+        double tr = 0.0;
+        for (std::size_t q = 0; q < m; ++q) {
+            std::vector<double> A = N, col(m);
+            for (std::size_t w = 0; w < m; ++w)
+                col[w] = N0[w * m + q];
+            if (!solve_dense(A, col))
+                return static_cast<double>(m);
+            tr += col[q];
+        }
+        return std::clamp(tr, 0.0, static_cast<double>(m));
+    }
+
     // Minimises the data cost + s2 |e|^2 from th (Levenberg-Marquardt).
     void run(std::vector<double>& th, double s2, int max_it) const
     {
@@ -893,10 +918,17 @@ emitter_location emitter_locator::fit(double vehicle_x_m, double vehicle_y_m) co
         // once more by the gust fit's own, which also weighs the final covariance.
         gf = std::make_unique<gust_fit>(pr, d_gust, d_gust_tau, d_alt, d_alt_sigma);
         th.resize(gf->m, 0.0);
+        // The residual variance counts the parameters the gust states took from the
+        // data (effective_params): the gusts can absorb noise and multipath, and the
+        // raw residual variance would then weaken the prior and shrink the ellipse.
+        auto variance = [&]() {
+            const double dof = used - 2.0 - gf->effective_params(th, s2);
+            return std::max(gf->residuals(th, r) / std::max(dof, 1.0), 0.0625);
+        };
         gf->run(th, s2, 30);
-        s2 = std::max(gf->residuals(th, r) / std::max(used - 7, 1), 0.0625);
+        s2 = variance();
         gf->run(th, s2, 30);
-        s2 = std::max(gf->residuals(th, r) / std::max(used - 7, 1), 0.0625);
+        s2 = variance();
         out.gust_knots = static_cast<int>(gf->K);
         fin = gf.get();
     }

@@ -355,7 +355,7 @@ private:
     static constexpr double SEARCH_RADIUS_M = 600.0;         // the locator's grid extent
     static constexpr double MAX_WIND_FRACTION = 0.9;         // of the airspeed
     static constexpr double MIN_FAR_CHECK_ALTITUDE_M = 50.0; // far_check()
-    static constexpr double HEIGHT_SIGMAS = 3.0;             // height_agrees()
+    static constexpr double HEIGHT_SIGMAS = 2.5;             // height_agrees()
     static constexpr int MAX_RETARGETS = 6; // moves of the orbited estimate that
                                             // extend the time allowed
     int d_status = 0;

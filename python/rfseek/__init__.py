@@ -5,15 +5,29 @@
 """gr-rfseek: RF source seeking using frequency measurements (GNU Radio OOT module).
 
 Blocks: channel_source (simulated emitter, scatterers, UAV, CFO), doppler_estimator
-(zero-padded FFT frequency estimator), seeking_controller (the paper's seeker), seek_view
-(QT GUI trajectory and frequency plots).
+(zero-padded FFT frequency estimator), seeking_controller (the paper's seeker), and in
+Python vehicle_bridge (UDP JSON link to the autopilot; loopback_vehicle for tests),
+sigmf_recorder (SigMF recording; replay_source plays one back) and seek_view (QT GUI
+trajectory and frequency plots).
 Core classes: scenario, world, rng, tone_estimator, seeker, simulation, study_point.
 Helpers: flowgraphs.closed_loop, plots.
 """
 
 from .rfseek_python import *  # noqa: F401,F403
+from ._version import __version__  # noqa: F401
 
 import math as _math
+
+# The Python blocks, importable from the package as the README lists them (imported here,
+# so that rfseek.vehicle_bridge is the block, not its module; the modules stay
+# reachable as gnuradio.rfseek.vehicle_bridge etc.).
+from .vehicle_bridge import loopback_vehicle, vehicle_bridge  # noqa: E402,F401
+from .sigmf import replay_source, sigmf_recorder  # noqa: E402,F401
+
+try:
+    from .seek_view import seek_view  # noqa: E402,F401
+except ImportError:  # no Qt or matplotlib: every other block works without them
+    pass
 
 
 def deg(x):

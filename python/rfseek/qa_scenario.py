@@ -16,6 +16,16 @@ from gnuradio import rfseek
 
 class qa_scenario(gr_unittest.TestCase):
 
+    def test_version_is_the_cmake_projects(self):
+        import os
+        import re
+        src = os.environ.get("RFSEEK_SOURCE_DIR",
+                             os.path.join(os.path.dirname(__file__), "..", ".."))
+        with open(os.path.join(src, "CMakeLists.txt")) as f:
+            m = re.search(r"project\(gr-rfseek VERSION ([0-9.]+)", f.read())
+        self.assertIsNotNone(m)
+        self.assertEqual(rfseek.__version__, m.group(1))
+
     def test_defaults_and_keywords(self):
         sc = rfseek.scenario()
         self.assertEqual(sc.initial_distance_m, 5000.0)

@@ -4,10 +4,10 @@
  * SPDX-License-Identifier: GPL-3.0-or-later
  *
  * doppler_fit: the bearing of the emitter from frequencies measured at known headings.
- * With the physical sign of eq. 1 (DESIGN.md item 1) a measurement flown at heading psi
- * is f = A cos(psi - beta) + f_o(t),   A = f_d,max,  f_o(t) ~ c + a (t - t0), beta the
- * bearing to the emitter. Internal to the library (Stage 1 of `paper`, and the `adaptive`
- * strategy); unit-tested against the model in lib/qa/qa_doppler_fit.cc.
+ * With the physical sign of eq. 1 (docs/design.md item 1) a measurement flown at heading
+ * psi is f = A cos(psi - beta) + f_o(t),   A = f_d,max,  f_o(t) ~ c + a (t - t0), beta
+ * the bearing to the emitter. Internal to the library (Stage 1 of `paper`, and the
+ * `adaptive` strategy); unit-tested against the model in lib/qa/qa_doppler_fit.cc.
  */
 
 #ifndef INCLUDED_RFSEEK_DOPPLER_FIT_H

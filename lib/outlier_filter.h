@@ -6,8 +6,8 @@
  * outlier_filter: the paper's eq. 4 (outlier rejection of the measured frequency), shared
  * by every strategy that uses frequencies. Internal to the library.
  *
- * Default (DESIGN.md item 5, sturdier form of issue 9): a value is accepted when it is
- * within the threshold of the last *accepted* value. There is no unconditional first
+ * Default (docs/design.md item 5, sturdier form of issue 9): a value is accepted when it
+ * is within the threshold of the last *accepted* value. There is no unconditional first
  * value: the filter locks only once lock_count consecutive candidates agree (their spread
  * is below the threshold), and it re-locks the same way (relock_count) when the accepted
  * value has gone stale, e.g. after a CFO jump. Measurements whose estimated SNR is below

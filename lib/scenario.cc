@@ -334,7 +334,7 @@ struct preset_def {
 const std::vector<preset_def>& preset_table()
 {
     static const std::vector<preset_def> table{
-        { "reference", "the paper's Table I with DESIGN.md's choices", {} },
+        { "reference", "the paper's Table I with docs/design.md's choices", {} },
         { "turn30",
           "turns limited to 30 deg/s",
           { { "turn_rate_rad_per_s", "0.5235987755982988" } } },

@@ -4,8 +4,8 @@
  * SPDX-License-Identifier: GPL-3.0-or-later
  *
  * tone_estimator: coarse peak of the zero-padded FFT, then
- *  - parabolic: the paper's eq. 3 read as DESIGN.md item 4, the vertex of the parabola
- *    through |X| at bins i-1, i, i+1: offset (y- - y+) / (2 (y- + y+ - 2 y0)) bins;
+ *  - parabolic: the paper's eq. 3 read as docs/design.md item 4, the vertex of the
+ * parabola through |X| at bins i-1, i, i+1: offset (y- - y+) / (2 (y- + y+ - 2 y0)) bins;
  *  - log_parabolic: the same on ln |X| (exact for a Gaussian-shaped peak);
  *  - newton: maximum-likelihood frequency, the maximum of the periodogram
  *    |sum_n x_n exp(-j w n)|^2 of the unwindowed samples, found by Newton steps from the

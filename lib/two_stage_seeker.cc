@@ -5,7 +5,7 @@
  *
  * two_stage_seeker: the paper's two-stage seeker (Sec. III), strategies `paper` (Stage 1
  * circle, then Stage 2) and `paper_no_circle` (Stage 2 from the initial heading), with
- * the resolutions of DESIGN.md.
+ * the resolutions of docs/design.md.
  *
  * Timing: the measurement of slot j is taken at the heading commanded after slot j-1, so
  * each measurement is credited to the command that was in force when it was taken (its

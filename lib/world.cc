@@ -10,7 +10,7 @@
  *   A Gamma_p exp(-j beta L_p) / L_p   (Gamma_LOS = 1, L = path length),
  * and rotates at its own Doppler f_p = (v / lambda) cos(phi_k - psi_p), psi_p the
  * direction from the UAV toward the path's source point (emitter or scatterer):
- * positive when approaching (DESIGN.md, item 1). All paths share the carrier offset
+ * positive when approaching (docs/design.md, item 1). All paths share the carrier offset
  * f_o(t) = f_o(0) + a t + w(t), whose phase is integrated continuously (item 2).
  */
 

@@ -67,7 +67,8 @@ def check(root):
                     file_part, _, frag = target.partition("#")
                     dest = (os.path.normpath(os.path.join(os.path.dirname(path), file_part))
                             if file_part else path)
-                    if not os.path.realpath(dest).startswith(os.path.realpath(root)):
+                    real, top = os.path.realpath(dest), os.path.realpath(root)
+                    if os.path.commonpath([real, top]) != top:
                         bad.append(where + " (outside the repository)")
                     elif not os.path.exists(dest):
                         bad.append(where + " (no such file)")

@@ -30,11 +30,14 @@ def percentile(v, q):
 
 def cell_summary(rows):
     n = len(rows)
+    if n == 0:
+        raise ValueError("no usable rows (every run raised)")
     located = [r for r in rows if r.get("located")]
     err = [r["location_error_m"] for r in located]
     return {
         "runs": n,
         "success": sum(bool(r["success"]) for r in rows) / n,
+        "line": statistics.mean(r["straight_ratio"] for r in rows),
         "declared_300": sum(bool(r["declared"]) and r["arrival_detect_distance_m"] <= 300.0
                             for r in rows) / n,
         "false": sum(bool(r["false_arrival"]) for r in rows) / n,
@@ -61,6 +64,9 @@ def main(argv):
                    "Carlo's (e.g. locate_gust_mps=1)")
     p.add_argument("--threads", type=int, default=0)
     p.add_argument("--out", default="locator_envelope", help="folder for the JSON files")
+    p.add_argument("--reuse", action="store_true",
+                   help="tabulate the JSON files already in --out instead of running "
+                        "the cells again")
     a = p.parse_args(argv)
     if a.runs < 1:
         p.error("--runs must be >= 1")
@@ -70,9 +76,9 @@ def main(argv):
         for g in a.gusts.split(","):
             for tau in (a.taus.split(",") if float(g) > 0 else ["-"]):
                 cells.append((g, tau, alt))
-    print("| gusts (std, tau) | altimeter error | located | declared within 300 m "
-          "| false | error median / p90 | in 95 % ellipse |")
-    print("| --- | --- | --- | --- | --- | --- | --- |")
+    print("| gusts (std, tau) | altimeter error | success | line ratio | located "
+          "| declared within 300 m | false | error median / p90 | in 95 % ellipse |")
+    print("| --- | --- | --- | --- | --- | --- | --- | --- | --- |")
     for g, tau, alt in cells:
         name = "g%s_t%s_a%s" % (g, tau, alt)
         out = os.path.join(a.out, name + ".json")
@@ -85,16 +91,24 @@ def main(argv):
             cmd += ["--threads", str(a.threads)]
         for s in a.set:
             cmd += ["--set", s]
-        r = subprocess.run(cmd, capture_output=True, text=True)
-        if r.returncode != 0:
-            print("locator_envelope: %s failed: %s" % (name, r.stderr.strip()),
-                  file=sys.stderr)
+        if not (a.reuse and os.path.exists(out)):
+            r = subprocess.run(cmd, capture_output=True, text=True)
+            if r.returncode != 0:
+                print("locator_envelope: %s failed: %s" % (name, r.stderr.strip()),
+                      file=sys.stderr)
+                return 1
+        with open(out) as f:
+            rows = [x for x in json.load(f)["rows"] if not x.get("error")]
+        try:
+            s = cell_summary(rows)
+        except ValueError as e:
+            print("locator_envelope: %s: %s" % (name, e), file=sys.stderr)
             return 1
-        rows = [x for x in json.load(open(out))["rows"] if "error" not in x]
-        s = cell_summary(rows)
         gust = "none" if tau == "-" else "%s m/s, %s s" % (g, tau)
-        print("| %s | %+d m | %.1f %% | %.1f %% | %.1f %% | %.1f / %.0f m | %.1f %% |" % (
-            gust, int(float(alt)), 100 * s["located"], 100 * s["declared_300"],
+        print("| %s | %+d m | %.1f %% | %.3f | %.1f %% | %.1f %% | %.1f %% | %.1f / %.0f m "
+              "| %.1f %% |" % (
+            gust, int(float(alt)), 100 * s["success"], s["line"], 100 * s["located"],
+            100 * s["declared_300"],
             100 * s["false"], s["err_median"], s["err_p90"], 100 * s["in_ellipse"]),
             flush=True)
     return 0

@@ -4,8 +4,8 @@
  * SPDX-License-Identifier: GPL-3.0-or-later
  *
  * scenario: every parameter of one simulated run, in one place. The defaults are the
- * reference scenario of the paper's Table I plus the choices DESIGN.md makes where the
- * paper is silent. Plain C++ (no GNU Radio types).
+ * reference scenario of the paper's Table I plus the choices docs/design.md makes where
+ * the paper is silent. Plain C++ (no GNU Radio types).
  */
 
 #ifndef INCLUDED_RFSEEK_SCENARIO_H

@@ -137,8 +137,10 @@ struct RFSEEK_API seeker_config {
     //! The vehicle's height above the ground the emitter stands on, as its altimeter /
     //! autopilot holds it (m; NaN: unknown): the location fit's prior on the height,
     //! with std locate_altitude_sigma_m, the altimeter's stated accuracy (m; 0: the
-    //! height is fitted freely). The simulation gives it the scenario's altitude_m plus
-    //! its altimeter_error_m.
+    //! height is fitted freely). A fit whose height is more than 2.5 x that from
+    //! locate_altitude_m is not used (a far orbit read as a near, low emitter); with 0
+    //! or no altitude that check is off too. The simulation gives it the scenario's
+    //! altitude_m plus its altimeter_error_m.
     double locate_altitude_m = std::numeric_limits<double>::quiet_NaN();
     double locate_altitude_sigma_m = 20.0;
 

@@ -6,8 +6,8 @@
  * world: the simulated physics of one run, slot by slot. Emitter at the origin,
  * scatterers in an annulus around it, the UAV flying at constant speed, the drifting
  * carrier offset, and the complex baseband beacon the UAV receives (paper eq. 1-2, with
- * the resolutions of DESIGN.md: physical Doppler sign, CFO phase as the integral of f_o,
- * amplitudes and phases from eq. 2). Plain C++ (no GNU Radio types).
+ * the resolutions of docs/design.md: physical Doppler sign, CFO phase as the integral of
+ * f_o, amplitudes and phases from eq. 2). Plain C++ (no GNU Radio types).
  */
 
 #ifndef INCLUDED_RFSEEK_WORLD_H

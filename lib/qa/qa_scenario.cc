@@ -2,7 +2,7 @@
  * Copyright 2026 gr-rfseek authors.
  * SPDX-License-Identifier: GPL-3.0-or-later
  *
- * scenario: reference defaults (paper Table I + DESIGN.md), validation messages that
+ * scenario: reference defaults (paper Table I + docs/design.md), validation messages that
  * name the parameter, and by-name access.
  */
 
@@ -43,7 +43,7 @@ TEST(scenario, defaults_are_the_reference_scenario)
     EXPECT_EQ(s.success_radius_m, 200.0);
     EXPECT_DOUBLE_EQ(s.shortest_path_m(), 4800.0);
     EXPECT_DOUBLE_EQ(s.effective_flight_cap_m(), 4.0 * 4800.0);
-    // f_d,max = v f_c / c = 66.7 Hz (DESIGN.md)
+    // f_d,max = v f_c / c = 66.7 Hz (docs/design.md)
     EXPECT_NEAR(s.max_doppler_hz(), 10.0 * 2e9 / 299792458.0, 1e-12);
     EXPECT_NEAR(s.max_doppler_hz(), 66.71, 0.01);
     EXPECT_NO_THROW(s.validate());

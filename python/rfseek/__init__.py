@@ -18,15 +18,17 @@ from ._version import __version__  # noqa: F401
 
 import math as _math
 
-# The Python blocks, importable from the package as the README lists them (imported here,
-# so that rfseek.vehicle_bridge is the block, not its module; the modules stay
-# reachable as gnuradio.rfseek.vehicle_bridge etc.).
+# The Python blocks, importable from the package as the README lists them. As in
+# gr_modtool's modules, rfseek.vehicle_bridge and rfseek.seek_view are then the blocks,
+# which shadow the modules of the same name as attributes of the package: take their
+# helpers with `from gnuradio.rfseek.vehicle_bridge import parse_nav` (`import
+# gnuradio.rfseek.vehicle_bridge as m` gives the block). rfseek.sigmf stays the module.
 from .vehicle_bridge import loopback_vehicle, vehicle_bridge  # noqa: E402,F401
 from .sigmf import replay_source, sigmf_recorder  # noqa: E402,F401
 
 try:
     from .seek_view import seek_view  # noqa: E402,F401
-except ImportError:  # no Qt or matplotlib: every other block works without them
+except Exception:  # no (or a broken) Qt or matplotlib: every other block works
     pass
 
 

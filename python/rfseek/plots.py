@@ -293,16 +293,29 @@ def sweep_table(result, metric="auto"):
     "mean / p90 (success)" of the ratio sweep_metric picks."""
     key, label = sweep_metric(result, metric)
     sw = result["sweep"]
-    lines = ["| %s (%s) | " % (sw["key"], label) +
-             " | ".join(str(v) for v in sw["values"]) + " |",
-             "| --- |" + " --- |" * len(sw["values"])]
-    for name in result["strategies"]:
-        cells = []
-        for e in sw["summary"]:
-            s = e[name]
-            ok = ("%.1f" % (100 * s["success_rate"])).replace("100.0", "100")
-            cells.append("%.3f / %.3f (%s %%)" % (s["mean_" + key], s["p90_" + key], ok))
-        lines.append("| `%s` mean / p90 (success) | " % name + " | ".join(cells) + " |")
+    presets = []
+    for e in sw["summary"]:
+        if e.get("preset") not in presets:
+            presets.append(e.get("preset"))
+    lines = []
+    for preset in presets:  # one table per preset (--preset A,B with --sweep)
+        entries = [e for e in sw["summary"] if e.get("preset") == preset]
+        if lines:
+            lines.append("")
+        head = "%s (%s)" % (sw["key"], label)
+        if len(presets) > 1:
+            head = "%s: %s" % (preset, head)
+        lines += ["| %s | " % head + " | ".join(str(e["value"]) for e in entries) + " |",
+                  "| --- |" + " --- |" * len(entries)]
+        for name in result["strategies"]:
+            cells = []
+            for e in entries:
+                s = e[name]
+                ok = ("%.1f" % (100 * s["success_rate"])).replace("100.0", "100")
+                cells.append("%.3f / %.3f (%s %%)" % (s["mean_" + key], s["p90_" + key],
+                                                       ok))
+            lines.append("| `%s` mean / p90 (success) | " % name + " | ".join(cells) +
+                         " |")
     return "\n".join(lines)
 
 

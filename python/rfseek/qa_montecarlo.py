@@ -196,8 +196,8 @@ class qa_montecarlo(gr_unittest.TestCase):
     def test_locator_is_honest_in_gusts_unlike_its_prior(self):
         # The locator's gust prior (1.5 m/s, 4 s by default) is not the air's: realistic
         # with 1 m/s gusts of 30 s, 30 adaptive runs. The 95 % ellipse must still hold
-        # the emitter in most located runs (the envelope table in docs/seeker.md: 88-98 %
-        # on 200 runs), while staying small enough to mean something.
+        # the emitter in most located runs (the envelope table in docs/seeker.md: 91.9 %
+        # of 100 runs for these gusts), while staying small enough to mean something.
         p, out = run_mc(self.tmp, "honest", "--runs", "30", "--strategy", "adaptive",
                         "--preset", "realistic", "--arrival", "self", "--threads", "2",
                         "--set", "wind_gust_mps=1", "--set", "wind_gust_tau_s=30",

@@ -40,17 +40,17 @@ class qa_sigmf(gr_unittest.TestCase):
     def test_python_blocks_are_importable_from_the_package(self):
         # As the README lists them: rfseek.<block> is the class its module defines.
         import sys
-        import gnuradio.rfseek.seek_view  # noqa: F401 (the modules, as GRC imports them)
-        import gnuradio.rfseek.vehicle_bridge  # noqa: F401
-        seek_view = sys.modules["gnuradio.rfseek.seek_view"]
+        from gnuradio.rfseek.vehicle_bridge import parse_nav  # noqa: F401 (GRC's way)
         vehicle_bridge = sys.modules["gnuradio.rfseek.vehicle_bridge"]
         self.assertIs(rfseek.sigmf_recorder, sigmf.sigmf_recorder)
         self.assertIs(rfseek.replay_source, sigmf.replay_source)
         self.assertIs(rfseek.vehicle_bridge, vehicle_bridge.vehicle_bridge)
         self.assertIs(rfseek.loopback_vehicle, vehicle_bridge.loopback_vehicle)
-        self.assertIs(rfseek.seek_view, seek_view.seek_view)
-        with self.assertRaises(AttributeError):
-            rfseek.no_such_block
+        try:
+            from gnuradio.rfseek.seek_view import seek_view  # noqa: F401
+        except ImportError:
+            self.skipTest("no Qt or matplotlib: seek_view is optional")
+        self.assertIs(rfseek.seek_view, sys.modules["gnuradio.rfseek.seek_view"].seek_view)
 
     def test_committed_recording_is_valid_sigmf(self):
         meta = json.load(open(RECORDING + ".sigmf-meta"))

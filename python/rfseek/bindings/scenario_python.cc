@@ -4,7 +4,7 @@
  */
 
 /* BINDTOOL_HEADER_FILE(scenario.h) */
-/* BINDTOOL_HEADER_FILE_HASH(f2e34d0e68314cd0e0728aa9d0b6b6df) */
+/* BINDTOOL_HEADER_FILE_HASH(a221c19ae3436da4c75e6177776923cc) */
 
 #include "kwargs.h"
 #include <gr-rfseek/scenario.h>
@@ -23,7 +23,7 @@ void bind_scenario(py::module& m)
         m,
         "scenario",
         "All parameters of a simulated run. Defaults: the reference "
-        "scenario (paper Table I + DESIGN.md). Fields set to None are "
+        "scenario (paper Table I + docs/design.md). Fields set to None are "
         "drawn from the seed. scenario(**fields) sets fields by name.");
     c.def(py::init([](const py::kwargs& kw) {
         return rfseek_from_kwargs<scenario>(kw, "scenario");

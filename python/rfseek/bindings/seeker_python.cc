@@ -4,7 +4,7 @@
  */
 
 /* BINDTOOL_HEADER_FILE(seeker.h) */
-/* BINDTOOL_HEADER_FILE_HASH(84cad8e2bfd725ad34a650e45f88a2e4) */
+/* BINDTOOL_HEADER_FILE_HASH(f8bce3a90c6d64703e34d5bcd0130978) */
 
 #include "kwargs.h"
 #include <gr-rfseek/seeker.h>
@@ -116,7 +116,10 @@ void bind_seeker(py::module& m)
        "location fit: the vehicle's height above the emitter's ground as its altimeter "
        "holds it (m; NaN: unknown, no height prior)");
     RW(locate_altitude_sigma_m,
-       "location fit: std of the height prior (m; 0: the height is fitted freely)");
+       "location fit: std of the height prior, the altimeter's stated accuracy (m; 0: "
+       "the "
+       "height is fitted freely); fits more than 2.5 x this from locate_altitude_m are "
+       "not used");
 #undef RW
     c.def("validate", &seeker_config::validate)
         .def_static("keys", &seeker_config::keys)

@@ -4,7 +4,7 @@
  */
 
 /* BINDTOOL_HEADER_FILE(world.h) */
-/* BINDTOOL_HEADER_FILE_HASH(e72b6abacc3b9181eef84e94e30e97c3) */
+/* BINDTOOL_HEADER_FILE_HASH(e5b6c5082c4801050dab2ab9663497cc) */
 
 #include <gr-rfseek/world.h>
 #include <pybind11/complex.h>

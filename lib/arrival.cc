@@ -30,11 +30,12 @@ double median(std::vector<double> v)
     return 0.5 * (hi + *std::max_element(v.begin(), v.begin() + n / 2));
 }
 
-//! Solve the n x n system a x = b in place (Gauss-Jordan, partial pivoting); a is
-//! row-major, b has n entries. False if a is singular.
-bool solve_dense(std::vector<double>& a, std::vector<double>& b)
+//! Solve the n x n system a X = b in place (Gauss-Jordan, partial pivoting) for the k
+//! columns of b (n x k, row-major; k = 1: a vector of n); a is row-major. False if a is
+//! singular.
+bool solve_dense(std::vector<double>& a, std::vector<double>& b, std::size_t k = 1)
 {
-    const std::size_t n = b.size();
+    const std::size_t n = b.size() / k;
     for (std::size_t c = 0; c < n; ++c) {
         std::size_t p = c;
         for (std::size_t r = c + 1; r < n; ++r)
@@ -45,20 +46,39 @@ bool solve_dense(std::vector<double>& a, std::vector<double>& b)
         if (p != c) {
             std::swap_ranges(
                 a.begin() + p * n, a.begin() + (p + 1) * n, a.begin() + c * n);
-            std::swap(b[p], b[c]);
+            std::swap_ranges(
+                b.begin() + p * k, b.begin() + (p + 1) * k, b.begin() + c * k);
         }
         for (std::size_t r = 0; r < n; ++r) {
             if (r == c)
                 continue;
             const double f = a[r * n + c] / a[c * n + c];
-            for (std::size_t k = c; k < n; ++k)
-                a[r * n + k] -= f * a[c * n + k];
-            b[r] -= f * b[c];
+            for (std::size_t q = c; q < n; ++q)
+                a[r * n + q] -= f * a[c * n + q];
+            for (std::size_t j = 0; j < k; ++j)
+                b[r * k + j] -= f * b[c * k + j];
         }
     }
     for (std::size_t c = 0; c < n; ++c)
-        b[c] /= a[c * n + c];
+        for (std::size_t j = 0; j < k; ++j)
+            b[c * k + j] /= a[c * n + c];
     return true;
+}
+
+//! N^-1 B for the k columns of B (m x k, row-major, overwritten), N (m x m) with a tiny
+//! ridge (1e-9 x its largest diagonal) that keeps a zero height (no height prior)
+//! invertible. False if singular.
+bool solve_ridged(std::vector<double> N,
+                  std::size_t m,
+                  std::vector<double>& B,
+                  std::size_t k)
+{
+    double scale = 0.0;
+    for (std::size_t q = 0; q < m; ++q)
+        scale = std::max(scale, N[q * m + q]);
+    for (std::size_t q = 0; q < m; ++q)
+        N[q * m + q] += 1e-9 * scale + 1e-12;
+    return solve_dense(N, B, k);
 }
 
 //! solve_dense for small fixed-size systems.
@@ -760,20 +780,11 @@ struct gust_fit {
         std::vector<double> N0, N, g, r;
         build(th, 0.0, N0, g, r); // J^T J
         build(th, s2, N, g, r);
-        double scale = 0.0;
-        for (std::size_t q = 0; q < m; ++q)
-            scale = std::max(scale, N[q * m + q]);
-        for (std::size_t q = 0; q < m; ++q)
-            N[q * m + q] += 1e-9 * scale + 1e-12;
+        if (!solve_ridged(N, m, N0, m)) // N0 becomes N^-1 J^T J
+            return static_cast<double>(m);
         double tr = 0.0;
-        for (std::size_t q = 0; q < m; ++q) {
-            std::vector<double> A = N, col(m);
-            for (std::size_t w = 0; w < m; ++w)
-                col[w] = N0[w * m + q];
-            if (!solve_dense(A, col))
-                return static_cast<double>(m);
-            tr += col[q];
-        }
+        for (std::size_t q = 0; q < m; ++q)
+            tr += N0[q * m + q];
         return std::clamp(tr, 0.0, static_cast<double>(m));
     }
 
@@ -970,25 +981,19 @@ emitter_location emitter_locator::fit(double vehicle_x_m, double vehicle_y_m) co
     }
     // The covariance (J^T J / (s2 inflation) + priors)^-1 = s2 inflation N^-1, N the
     // Gauss-Newton matrix with the priors weighted by s2 inflation: the inflation is
-    // the data's, not the priors'. A tiny ridge keeps a zero height (no height prior)
-    // invertible.
+    // the data's, not the priors' (solve_ridged keeps a zero height invertible).
     std::vector<double> N, g, rr;
     fin->build(th, s2 * inflation, N, g, rr);
     const std::size_t m = fin->m;
-    double scale = 0.0;
-    for (std::size_t q = 0; q < m; ++q)
-        scale = std::max(scale, N[q * m + q]);
-    for (std::size_t q = 0; q < m; ++q)
-        N[q * m + q] += 1e-9 * scale + 1e-12;
+    std::vector<double> E(m * 4, 0.0); // the first 4 unit columns -> N^-1's
+    for (std::size_t q = 0; q < 4; ++q)
+        E[q * 4 + q] = 1.0;
+    if (!solve_ridged(N, m, E, 4))
+        return out;
     std::array<double, 16> cov{}; // (p_x, p_y, w_x, w_y) block of N^-1
-    for (std::size_t q = 0; q < 4; ++q) {
-        std::vector<double> A = N, e(m, 0.0);
-        e[q] = 1.0;
-        if (!solve_dense(A, e))
-            return out;
-        for (std::size_t w = 0; w < 4; ++w)
-            cov[w * 4 + q] = e[w];
-    }
+    for (std::size_t w = 0; w < 4; ++w)
+        for (std::size_t q = 0; q < 4; ++q)
+            cov[w * 4 + q] = E[w * 4 + q];
     const double sxx = s2 * inflation * cov[0], syy = s2 * inflation * cov[5];
     const double sxy = s2 * inflation * 0.5 * (cov[1] + cov[4]);
     const double tr = 0.5 * (sxx + syy);

@@ -1,4 +1,4 @@
-#!/usr/bin/env python3
+#!/usr/bin/python3
 #
 # Copyright 2026 gr-rfseek authors.
 # SPDX-License-Identifier: GPL-3.0-or-later
@@ -18,35 +18,8 @@ Gust 0 has no correlation time: it is run once per altimeter error.
 import argparse
 import json
 import os
-import statistics
 import subprocess
 import sys
-
-
-def percentile(v, q):
-    v = sorted(v)
-    return v[min(len(v) - 1, int(q * len(v)))] if v else float("nan")
-
-
-def cell_summary(rows):
-    n = len(rows)
-    if n == 0:
-        raise ValueError("no usable rows (every run raised)")
-    located = [r for r in rows if r.get("located")]
-    err = [r["location_error_m"] for r in located]
-    return {
-        "runs": n,
-        "success": sum(bool(r["success"]) for r in rows) / n,
-        "line": statistics.mean(r["straight_ratio"] for r in rows),
-        "declared_300": sum(bool(r["declared"]) and r["arrival_detect_distance_m"] <= 300.0
-                            for r in rows) / n,
-        "false": sum(bool(r["false_arrival"]) for r in rows) / n,
-        "located": len(located) / n,
-        "err_median": statistics.median(err) if err else float("nan"),
-        "err_p90": percentile(err, 0.9),
-        "in_ellipse": (sum(bool(r["location_in_ellipse"]) for r in located) / len(located)
-                       if located else float("nan")),
-    }
 
 
 def main(argv):
@@ -98,18 +71,17 @@ def main(argv):
                       file=sys.stderr)
                 return 1
         with open(out) as f:
-            rows = [x for x in json.load(f)["rows"] if not x.get("error")]
-        try:
-            s = cell_summary(rows)
-        except ValueError as e:
-            print("locator_envelope: %s: %s" % (name, e), file=sys.stderr)
+            s = json.load(f)["summary"][a.strategy]  # rfseek-montecarlo's own summary
+        if s["runs"] == s.get("errors", 0):
+            print("locator_envelope: %s: every run raised" % name, file=sys.stderr)
             return 1
         gust = "none" if tau == "-" else "%s m/s, %s s" % (g, tau)
         print("| %s | %+d m | %.1f %% | %.3f | %.1f %% | %.1f %% | %.1f %% | %.1f / %.0f m "
               "| %.1f %% |" % (
-            gust, int(float(alt)), 100 * s["success"], s["line"], 100 * s["located"],
-            100 * s["declared_300"],
-            100 * s["false"], s["err_median"], s["err_p90"], 100 * s["in_ellipse"]),
+            gust, int(float(alt)), 100 * s["success_rate"], s["mean_straight_ratio"],
+            100 * s["located_rate"], 100 * s["declared_within_300m_rate"],
+            100 * s["false_arrival_rate"], s["location_error_m_median"],
+            s["location_error_m_p90"], 100 * s["location_in_ellipse_rate"]),
             flush=True)
     return 0
 

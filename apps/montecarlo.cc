@@ -71,7 +71,7 @@ flown to reach the success radius, per strategy, on the same seeds.
   --dask-local N        start a Dask LocalCluster of N worker processes here
   --dask-chunk K        runs per Dask task (default: about 4 tasks per worker, <= 50)
   --dask-timeout S      seconds to reach the scheduler (default 10)
-  --python PATH         interpreter of the Dask backend (default /usr/bin/python3)
+  --python PATH         interpreter of the Dask backend (default: GNU Radio's python)
   --quiet               no progress bar
   --help
 )";
@@ -664,7 +664,7 @@ int main(int argc, char** argv)
     std::vector<std::string> sweep_values{ "" };
     std::vector<std::string> presets{ "" };
     bool quiet = false, resume = false, arrival_self = false;
-    std::string scheduler, python = "/usr/bin/python3";
+    std::string scheduler, python = RFSEEK_PYTHON;
     int dask_local = 0, dask_chunk = 0;
     double dask_timeout = 10.0;
     kv_list given;

@@ -19,7 +19,7 @@ case "$seconds" in '' | *[!0-9]*) echo "usage: fuzz.sh [SECONDS per harness]" >&
 echo "==> fuzzing build (clang, libFuzzer + ASan + UBSan) in $build"
 mkdir -p "$build"
 CC=clang CXX=clang++ cmake -S "$here" -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-    -DRFSEEK_FUZZ=ON -DPython3_EXECUTABLE=/usr/bin/python3 >"$build/configure.log" 2>&1 ||
+    -DRFSEEK_FUZZ=ON >"$build/configure.log" 2>&1 ||
     {
         cat "$build/configure.log"
         exit 1
@@ -51,7 +51,8 @@ for f in fuzz_channel_source_cmd fuzz_seeking_controller fuzz_tone_estimator \
 done
 
 echo "==> Python parsers (scripts/fuzz_python.py), $seconds s each"
-if ! PYTHONPATH="$here/build/python:${PYTHONPATH:-}" /usr/bin/python3 \
+python=$(sed -n 's/^Python3_EXECUTABLE:[A-Z]*=//p' "$build/CMakeCache.txt")
+if ! PYTHONPATH="$here/build/python:${PYTHONPATH:-}" "${python:-/usr/bin/python3}" \
     "$here/scripts/fuzz_python.py" --seconds "$seconds" --out "$build/findings" \
     >"$build/fuzz_python.log" 2>&1; then
     status=1

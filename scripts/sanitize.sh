@@ -16,7 +16,7 @@ jobs="${RFSEEK_JOBS:-$(nproc)}"
 echo "==> sanitizer build (ASan + UBSan) in $build, $jobs jobs"
 mkdir -p "$build"
 cmake -S "$here" -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DRFSEEK_SANITIZE=ON \
-    -DPython3_EXECUTABLE=/usr/bin/python3 >"$build/configure.log" 2>&1 ||
+    >"$build/configure.log" 2>&1 ||
     {
         cat "$build/configure.log"
         exit 1

@@ -35,13 +35,13 @@ else
     exit 1
 fi
 
-# Debian 12 packages (no PyPI). GNU Radio's Python is only seen by /usr/bin/python3.
+# Debian 12 packages (no PyPI).
 packages=(
     build-essential cmake pkg-config git
     gnuradio gnuradio-dev libvolk2-dev libfftw3-dev libuhd-dev gr-osmosdr
     pybind11-dev libgtest-dev libboost-all-dev libspdlog-dev libfmt-dev libgmp-dev
     python3-numpy python3-matplotlib python3-yaml python3-distributed
-    clang libclang-rt-14-dev
+    clang clang-format libclang-rt-14-dev
 )
 if [ "${RFSEEK_SKIP_APT:-0}" != 1 ]; then
     missing=()
@@ -61,8 +61,10 @@ fi
 
 echo "==> configuring and building in $build (prefix $prefix, $jobs jobs)"
 mkdir -p "$build"
+# The Python interpreter is GNU Radio's (found by CMake); the format check runs with
+# Debian 12's clang-format 14.
 cmake -S "$here" -B "$build" -DCMAKE_BUILD_TYPE=Release -DCMAKE_INSTALL_PREFIX="$prefix" \
-    -DPython3_EXECUTABLE=/usr/bin/python3 >"$build/configure.log" 2>&1 ||
+    -DRFSEEK_FORMAT_CHECK=ON >"$build/configure.log" 2>&1 ||
     {
         cat "$build/configure.log"
         exit 1

@@ -4,7 +4,8 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
 #
 """The blocks' GRC C++ templates: examples/seek_sim_cpp.grc is generated as C++ by grcc,
-built with g++ (C++17) against the build tree and run; it must end its flight on the
+built by the CMakeLists.txt GRC writes (no flags: find_package finds the module installed
+from the build tree) and run; it must end its flight on the
 slot the core simulation ends on, with the scenario and seeker its Python twin (the same
 .grc generated as Python) builds. A variant sets every optional field the C++ templates
 handle (start angle and heading, CFO, overrides, initial heading, arrival self), and
@@ -22,15 +23,14 @@ import yaml
 from gnuradio import gr_unittest
 from gnuradio import rfseek
 
+# GRC's compiler: the one CMake found, else the one on PATH.
+GRCC = os.environ.get("RFSEEK_GRCC") or shutil.which("grcc") or "grcc"
+
 SOURCE = os.environ.get("RFSEEK_SOURCE_DIR",
                         os.path.join(os.path.dirname(__file__), "..", ".."))
 BUILD = os.environ.get("RFSEEK_BUILD_DIR", os.path.join(SOURCE, "build"))
-
-
-def pkg_config(*args):
-    p = subprocess.run(["pkg-config", *args, "gnuradio-runtime", "gnuradio-blocks"],
-                       capture_output=True, text=True, check=True)
-    return p.stdout.split()
+# The module installed from the build tree (ctest's install_staged).
+STAGE = os.environ.get("RFSEEK_STAGE", os.path.join(BUILD, "stage"))
 
 
 class qa_grc_cpp(gr_unittest.TestCase):
@@ -54,7 +54,7 @@ class qa_grc_cpp(gr_unittest.TestCase):
         with open(path, "w") as f:
             yaml.safe_dump(g, f)
         out = os.path.join(self.tmp, "out")
-        p = subprocess.run([sys.executable, "/usr/bin/grcc", "-o", out, path],
+        p = subprocess.run([sys.executable, GRCC, "-o", out, path],
                            capture_output=True, text=True)
         self.assertEqual(p.returncode, 0, p.stdout + p.stderr)
         return out
@@ -73,19 +73,18 @@ class qa_grc_cpp(gr_unittest.TestCase):
         return rfseek.simulation(sc, cfg).run(False).summary, cfg
 
     def cpp_end(self, grc, name):
-        out = self.grcc(grc, "cpp", name)
-        src = os.path.join(out, name, name + ".cpp")
-        exe = os.path.join(out, name, name)
-        cmd = ["g++", "-std=c++17", "-O1", src, "-I" + os.path.join(SOURCE, "include"),
-               "-I" + os.path.dirname(src), *pkg_config("--cflags"),
-               "-L" + os.path.join(BUILD, "lib"), "-lgnuradio-rfseek",
-               *pkg_config("--libs"), "-lgnuradio-pmt", "-lfmt", "-lspdlog", "-o", exe]
-        if os.environ.get("RFSEEK_SANITIZE"):
-            cmd.insert(1, "-fsanitize=address,undefined")
-        p = subprocess.run(cmd, capture_output=True, text=True)
-        self.assertEqual(p.returncode, 0, p.stderr[-4000:])
+        # GRC's own CMakeLists.txt, with no flags: the module is found by
+        # find_package(gnuradio-rfseek) in the installed (staged) tree.
+        out = os.path.join(self.grcc(grc, "cpp", name), name)
+        build = os.path.join(out, "build")
         env = dict(os.environ)
-        env["LD_LIBRARY_PATH"] = os.path.join(BUILD, "lib")
+        env["CMAKE_PREFIX_PATH"] = STAGE
+        if os.environ.get("RFSEEK_SANITIZE"):
+            env["CXXFLAGS"] = env["LDFLAGS"] = "-fsanitize=address,undefined"
+        for cmd in (["cmake", "-S", out, "-B", build], ["cmake", "--build", build]):
+            p = subprocess.run(cmd, capture_output=True, text=True, env=env)
+            self.assertEqual(p.returncode, 0, (p.stdout + p.stderr)[-4000:])
+        exe = os.path.join(build, name)
         p = subprocess.run([exe], capture_output=True, text=True, env=env, timeout=300)
         self.assertEqual(p.returncode, 0, p.stderr[-4000:])
         m = re.search(r"(arrived|flight cap reached|declared its mission done) at slot (\d+)",

@@ -40,6 +40,7 @@ packages=(
     build-essential cmake pkg-config git
     gnuradio gnuradio-dev libvolk2-dev libfftw3-dev libuhd-dev gr-osmosdr
     pybind11-dev libgtest-dev libboost-all-dev libspdlog-dev libfmt-dev libgmp-dev
+    libcli11-dev nlohmann-json3-dev libeigen3-dev
     python3-numpy python3-matplotlib python3-yaml python3-distributed
     clang clang-format libclang-rt-14-dev
 )

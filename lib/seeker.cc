@@ -14,6 +14,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <map>
 #include <stdexcept>
 
 namespace gr {
@@ -38,6 +39,96 @@ double seeker_config::effective_outlier_threshold_hz() const
 {
     return outlier_threshold_hz > 0.0 ? outlier_threshold_hz : 2.0 * max_doppler_hz();
 }
+
+namespace {
+
+// The adaptive strategy's and the ground-track guidance's constants.
+void validate_adaptive(const seeker_config& c)
+{
+    if (c.adaptive_acquire_slots < 1 || c.adaptive_acquire_slots > 10000)
+        bad("adaptive_acquire_slots", c.adaptive_acquire_slots, "in [1, 10000]");
+    if (c.adaptive_relocate_slots < 0 || c.adaptive_relocate_slots > 100000)
+        bad("adaptive_relocate_slots", c.adaptive_relocate_slots, "in [0, 100000]");
+    if (c.adaptive_track_slots < 1 || c.adaptive_track_slots > 10000)
+        bad("adaptive_track_slots", c.adaptive_track_slots, "in [1, 10000]");
+    if (!(c.adaptive_gain > 0.0 && c.adaptive_gain <= 1.0))
+        bad("adaptive_gain", c.adaptive_gain, "in (0, 1]");
+    if (!(c.adaptive_delta_min_rad > 0.0 && c.adaptive_delta_min_rad < M_PI / 2))
+        bad("adaptive_delta_min_rad", c.adaptive_delta_min_rad, "in (0, pi/2)");
+    if (!(c.adaptive_delta_max_rad >= c.adaptive_delta_min_rad &&
+          c.adaptive_delta_max_rad < M_PI / 2))
+        bad("adaptive_delta_max_rad",
+            c.adaptive_delta_max_rad,
+            "in [adaptive_delta_min_rad, pi/2)");
+    if (!(c.adaptive_reacquire_rad > 0.0 && c.adaptive_reacquire_rad <= M_PI / 2))
+        bad("adaptive_reacquire_rad", c.adaptive_reacquire_rad, "in (0, pi/2]");
+    if (!(c.ground_track_gain >= 0.0 && c.ground_track_gain <= 100.0))
+        bad("ground_track_gain", c.ground_track_gain, "in [0, 100]");
+    if (!(c.ground_track_max_crab_rad >= 0.0 && c.ground_track_max_crab_rad < M_PI / 2))
+        bad("ground_track_max_crab_rad", c.ground_track_max_crab_rad, "in [0, pi/2)");
+    if (!(c.ground_track_gate >= 0.0 && c.ground_track_gate <= 100.0))
+        bad("ground_track_gate", c.ground_track_gate, "in [0, 100]");
+    if (!(c.ground_track_rate_walk > 0.0 && c.ground_track_rate_walk <= 1.0))
+        bad("ground_track_rate_walk",
+            c.ground_track_rate_walk,
+            "in (0, 1] rad/s/sqrt(s)");
+}
+
+// The constants of arrival without truth and of the emitter locator.
+void validate_arrival(const seeker_config& c)
+{
+    if (!(c.arrival_swing >= 0.5 && c.arrival_swing <= 2.0))
+        bad("arrival_swing",
+            c.arrival_swing,
+            "in [0.5, 2] (x f_d,max; below 0.5 a turn within the band could pass)");
+    if (!(c.arrival_window_s > 0.0 && c.arrival_window_s <= 3600.0))
+        bad("arrival_window_s", c.arrival_window_s, "in (0, 3600] s");
+    if (!(c.arrival_heading_band_rad > 0.0 && c.arrival_heading_band_rad <= M_PI))
+        bad("arrival_heading_band_rad", c.arrival_heading_band_rad, "in (0, pi]");
+    if (!(c.arrival_power_rise_db >= 0.0 && c.arrival_power_rise_db <= 100.0))
+        bad("arrival_power_rise_db", c.arrival_power_rise_db, "in [0, 100] dB");
+    if (c.arrival_block_slots < 1 || c.arrival_block_slots > 100000)
+        bad("arrival_block_slots", c.arrival_block_slots, "in [1, 100000]");
+    if (c.arrival_confirm_blocks < 1 || c.arrival_confirm_blocks > 1000)
+        bad("arrival_confirm_blocks", c.arrival_confirm_blocks, "in [1, 1000]");
+    if (!(c.arrival_encircle >= 0.0 && c.arrival_encircle <= 1.0))
+        bad("arrival_encircle", c.arrival_encircle, "in [0, 1] (x f_d,max; 0: off)");
+    if (!(c.arrival_far_amplitude >= 0.0 && c.arrival_far_amplitude <= 2.0))
+        bad("arrival_far_amplitude",
+            c.arrival_far_amplitude,
+            "in [0, 2] (x f_d,max; 0: off)");
+    if (!(c.arrival_confirm_m >= 0.0 && c.arrival_confirm_m <= 1e5))
+        bad("arrival_confirm_m",
+            c.arrival_confirm_m,
+            "in [0, 1e5] m (0: no confirmation)");
+    if (!(c.loiter_radius_m >= c.speed_mps * c.slot_period_s / M_PI &&
+          c.loiter_radius_m <= 1e5))
+        bad("loiter_radius_m", c.loiter_radius_m, "in [v T_slot / pi, 1e5] m");
+    if (c.self_arrival && c.turn_rate_rad_per_s > 0.0 &&
+        c.loiter_radius_m < c.speed_mps / c.turn_rate_rad_per_s)
+        bad("loiter_radius_m",
+            c.loiter_radius_m,
+            ">= speed_mps / turn_rate_rad_per_s (an orbit the vehicle can turn)");
+    if (!(c.locate_orbits > 0.0 && c.locate_orbits <= 100.0))
+        bad("locate_orbits", c.locate_orbits, "in (0, 100]");
+    if (!(c.locate_max_orbits >= c.locate_orbits && c.locate_max_orbits <= 1000.0))
+        bad("locate_max_orbits", c.locate_max_orbits, "in [locate_orbits, 1000]");
+    if (!(c.locate_max_axis_m > 0.0) || !std::isfinite(c.locate_max_axis_m))
+        bad("locate_max_axis_m", c.locate_max_axis_m, "> 0");
+    if (!(c.locate_gust_mps >= 0.0 && c.locate_gust_mps <= 50.0))
+        bad("locate_gust_mps", c.locate_gust_mps, "in [0, 50] m/s");
+    if (!(c.locate_gust_tau_s >= 0.1 && c.locate_gust_tau_s <= 3600.0))
+        bad("locate_gust_tau_s", c.locate_gust_tau_s, "in [0.1, 3600] s");
+    if (!std::isnan(c.locate_altitude_m) &&
+        !(c.locate_altitude_m >= 0.0 && c.locate_altitude_m <= 1e4))
+        bad("locate_altitude_m", c.locate_altitude_m, "in [0, 1e4] m, or NaN (unknown)");
+    if (!(c.locate_altitude_sigma_m >= 0.0 && c.locate_altitude_sigma_m <= 1e4))
+        bad("locate_altitude_sigma_m",
+            c.locate_altitude_sigma_m,
+            "in [0, 1e4] m (0: none)");
+}
+
+} // namespace
 
 void seeker_config::validate() const
 {
@@ -93,77 +184,8 @@ void seeker_config::validate() const
         bad("lock_count", lock_count, "in [1, 1000]");
     if (std::isnan(min_snr_db) || min_snr_db > 100.0)
         bad("min_snr_db", min_snr_db, "<= 100 dB (-inf: no gate)");
-    if (adaptive_acquire_slots < 1 || adaptive_acquire_slots > 10000)
-        bad("adaptive_acquire_slots", adaptive_acquire_slots, "in [1, 10000]");
-    if (adaptive_relocate_slots < 0 || adaptive_relocate_slots > 100000)
-        bad("adaptive_relocate_slots", adaptive_relocate_slots, "in [0, 100000]");
-    if (adaptive_track_slots < 1 || adaptive_track_slots > 10000)
-        bad("adaptive_track_slots", adaptive_track_slots, "in [1, 10000]");
-    if (!(adaptive_gain > 0.0 && adaptive_gain <= 1.0))
-        bad("adaptive_gain", adaptive_gain, "in (0, 1]");
-    if (!(adaptive_delta_min_rad > 0.0 && adaptive_delta_min_rad < M_PI / 2))
-        bad("adaptive_delta_min_rad", adaptive_delta_min_rad, "in (0, pi/2)");
-    if (!(adaptive_delta_max_rad >= adaptive_delta_min_rad &&
-          adaptive_delta_max_rad < M_PI / 2))
-        bad("adaptive_delta_max_rad",
-            adaptive_delta_max_rad,
-            "in [adaptive_delta_min_rad, pi/2)");
-    if (!(adaptive_reacquire_rad > 0.0 && adaptive_reacquire_rad <= M_PI / 2))
-        bad("adaptive_reacquire_rad", adaptive_reacquire_rad, "in (0, pi/2]");
-    if (!(ground_track_gain >= 0.0 && ground_track_gain <= 100.0))
-        bad("ground_track_gain", ground_track_gain, "in [0, 100]");
-    if (!(ground_track_max_crab_rad >= 0.0 && ground_track_max_crab_rad < M_PI / 2))
-        bad("ground_track_max_crab_rad", ground_track_max_crab_rad, "in [0, pi/2)");
-    if (!(ground_track_gate >= 0.0 && ground_track_gate <= 100.0))
-        bad("ground_track_gate", ground_track_gate, "in [0, 100]");
-    if (!(ground_track_rate_walk > 0.0 && ground_track_rate_walk <= 1.0))
-        bad("ground_track_rate_walk", ground_track_rate_walk, "in (0, 1] rad/s/sqrt(s)");
-    if (!(arrival_swing >= 0.5 && arrival_swing <= 2.0))
-        bad("arrival_swing",
-            arrival_swing,
-            "in [0.5, 2] (x f_d,max; below 0.5 a turn within the band could pass)");
-    if (!(arrival_window_s > 0.0 && arrival_window_s <= 3600.0))
-        bad("arrival_window_s", arrival_window_s, "in (0, 3600] s");
-    if (!(arrival_heading_band_rad > 0.0 && arrival_heading_band_rad <= M_PI))
-        bad("arrival_heading_band_rad", arrival_heading_band_rad, "in (0, pi]");
-    if (!(arrival_power_rise_db >= 0.0 && arrival_power_rise_db <= 100.0))
-        bad("arrival_power_rise_db", arrival_power_rise_db, "in [0, 100] dB");
-    if (arrival_block_slots < 1 || arrival_block_slots > 100000)
-        bad("arrival_block_slots", arrival_block_slots, "in [1, 100000]");
-    if (arrival_confirm_blocks < 1 || arrival_confirm_blocks > 1000)
-        bad("arrival_confirm_blocks", arrival_confirm_blocks, "in [1, 1000]");
-    if (!(arrival_encircle >= 0.0 && arrival_encircle <= 1.0))
-        bad("arrival_encircle", arrival_encircle, "in [0, 1] (x f_d,max; 0: off)");
-    if (!(arrival_far_amplitude >= 0.0 && arrival_far_amplitude <= 2.0))
-        bad("arrival_far_amplitude",
-            arrival_far_amplitude,
-            "in [0, 2] (x f_d,max; 0: off)");
-    if (!(arrival_confirm_m >= 0.0 && arrival_confirm_m <= 1e5))
-        bad("arrival_confirm_m", arrival_confirm_m, "in [0, 1e5] m (0: no confirmation)");
-    if (!(loiter_radius_m >= speed_mps * slot_period_s / M_PI && loiter_radius_m <= 1e5))
-        bad("loiter_radius_m", loiter_radius_m, "in [v T_slot / pi, 1e5] m");
-    if (self_arrival && turn_rate_rad_per_s > 0.0 &&
-        loiter_radius_m < speed_mps / turn_rate_rad_per_s)
-        bad("loiter_radius_m",
-            loiter_radius_m,
-            ">= speed_mps / turn_rate_rad_per_s (an orbit the vehicle can turn)");
-    if (!(locate_orbits > 0.0 && locate_orbits <= 100.0))
-        bad("locate_orbits", locate_orbits, "in (0, 100]");
-    if (!(locate_max_orbits >= locate_orbits && locate_max_orbits <= 1000.0))
-        bad("locate_max_orbits", locate_max_orbits, "in [locate_orbits, 1000]");
-    if (!(locate_max_axis_m > 0.0) || !std::isfinite(locate_max_axis_m))
-        bad("locate_max_axis_m", locate_max_axis_m, "> 0");
-    if (!(locate_gust_mps >= 0.0 && locate_gust_mps <= 50.0))
-        bad("locate_gust_mps", locate_gust_mps, "in [0, 50] m/s");
-    if (!(locate_gust_tau_s >= 0.1 && locate_gust_tau_s <= 3600.0))
-        bad("locate_gust_tau_s", locate_gust_tau_s, "in [0.1, 3600] s");
-    if (!std::isnan(locate_altitude_m) &&
-        !(locate_altitude_m >= 0.0 && locate_altitude_m <= 1e4))
-        bad("locate_altitude_m", locate_altitude_m, "in [0, 1e4] m, or NaN (unknown)");
-    if (!(locate_altitude_sigma_m >= 0.0 && locate_altitude_sigma_m <= 1e4))
-        bad("locate_altitude_sigma_m",
-            locate_altitude_sigma_m,
-            "in [0, 1e4] m (0: none)");
+    validate_adaptive(*this);
+    validate_arrival(*this);
     if (initial_heading_rad && !std::isfinite(*initial_heading_rad))
         bad("initial_heading_rad", *initial_heading_rad, "finite");
 }
@@ -238,6 +260,99 @@ std::vector<std::string> seeker_config::keys()
              "locate_altitude_sigma_m" };
 }
 
+namespace {
+
+// How set() reads a key: a number, degrees into a radian field, an integer or a bool.
+enum class setting { real, degrees, integer, boolean };
+
+struct seeker_setting {
+    setting kind;
+    void* (*member)(seeker_config&);
+};
+
+#define RFSEEK_SETTING(KEY, MEMBER, KIND)                                      \
+    {                                                                          \
+#KEY,                                                                  \
+        {                                                                      \
+            setting::KIND, [](seeker_config& c) -> void* { return &c.MEMBER; } \
+        }                                                                      \
+    }
+
+// Every key of set() but strategy, seed and initial_heading_rad.
+const std::map<std::string, seeker_setting>& settings()
+{
+    static const std::map<std::string, seeker_setting> table = {
+        RFSEEK_SETTING(speed_mps, speed_mps, real),
+        RFSEEK_SETTING(carrier_hz, carrier_hz, real),
+        RFSEEK_SETTING(slot_period_s, slot_period_s, real),
+        RFSEEK_SETTING(delta_rad, delta_rad, real),
+        RFSEEK_SETTING(delta_deg, delta_rad, degrees),
+        RFSEEK_SETTING(delta_max_rad, delta_max_rad, real),
+        RFSEEK_SETTING(delta_max_deg, delta_max_rad, degrees),
+        RFSEEK_SETTING(delta_step_rad, delta_step_rad, real),
+        RFSEEK_SETTING(delta_step_deg, delta_step_rad, degrees),
+        RFSEEK_SETTING(delta_after_steps, delta_after_steps, integer),
+        RFSEEK_SETTING(m_slots, m_slots, integer),
+        RFSEEK_SETTING(circle_radius_m, circle_radius_m, real),
+        RFSEEK_SETTING(moving_average_len, moving_average_len, integer),
+        RFSEEK_SETTING(outlier_threshold_hz, outlier_threshold_hz, real),
+        RFSEEK_SETTING(literal_eq4, literal_eq4, boolean),
+        RFSEEK_SETTING(relock_count, relock_count, integer),
+        RFSEEK_SETTING(turn_rate_rad_per_s, turn_rate_rad_per_s, real),
+        RFSEEK_SETTING(hold_after_missing, hold_after_missing, integer),
+        RFSEEK_SETTING(rss_run_slots, rss_run_slots, integer),
+        RFSEEK_SETTING(rss_good_ratio, rss_good_ratio, real),
+        RFSEEK_SETTING(rss_reverse_db, rss_reverse_db, real),
+        RFSEEK_SETTING(rss_min_runs, rss_min_runs, integer),
+        RFSEEK_SETTING(lock_count, lock_count, integer),
+        RFSEEK_SETTING(min_snr_db, min_snr_db, real),
+        RFSEEK_SETTING(stage1_fit, stage1_fit, boolean),
+        RFSEEK_SETTING(adaptive_acquire_slots, adaptive_acquire_slots, integer),
+        RFSEEK_SETTING(adaptive_relocate_slots, adaptive_relocate_slots, integer),
+        RFSEEK_SETTING(adaptive_track_slots, adaptive_track_slots, integer),
+        RFSEEK_SETTING(adaptive_gain, adaptive_gain, real),
+        RFSEEK_SETTING(adaptive_delta_min_rad, adaptive_delta_min_rad, real),
+        RFSEEK_SETTING(adaptive_delta_min_deg, adaptive_delta_min_rad, degrees),
+        RFSEEK_SETTING(adaptive_delta_max_rad, adaptive_delta_max_rad, real),
+        RFSEEK_SETTING(adaptive_delta_max_deg, adaptive_delta_max_rad, degrees),
+        RFSEEK_SETTING(adaptive_reacquire_rad, adaptive_reacquire_rad, real),
+        RFSEEK_SETTING(adaptive_reacquire_deg, adaptive_reacquire_rad, degrees),
+        RFSEEK_SETTING(adaptive_drift, adaptive_drift, boolean),
+        RFSEEK_SETTING(adaptive_scatter_delta, adaptive_scatter_delta, boolean),
+        RFSEEK_SETTING(adaptive_ground_track, adaptive_ground_track, boolean),
+        RFSEEK_SETTING(ground_track_gain, ground_track_gain, real),
+        RFSEEK_SETTING(ground_track_max_crab_rad, ground_track_max_crab_rad, real),
+        RFSEEK_SETTING(ground_track_max_crab_deg, ground_track_max_crab_rad, degrees),
+        RFSEEK_SETTING(ground_track_gate, ground_track_gate, real),
+        RFSEEK_SETTING(ground_track_rate_walk, ground_track_rate_walk, real),
+        RFSEEK_SETTING(self_arrival, self_arrival, boolean),
+        RFSEEK_SETTING(arrival_swing, arrival_swing, real),
+        RFSEEK_SETTING(arrival_window_s, arrival_window_s, real),
+        RFSEEK_SETTING(arrival_heading_band_rad, arrival_heading_band_rad, real),
+        RFSEEK_SETTING(arrival_heading_band_deg, arrival_heading_band_rad, degrees),
+        RFSEEK_SETTING(arrival_power_rise_db, arrival_power_rise_db, real),
+        RFSEEK_SETTING(arrival_block_slots, arrival_block_slots, integer),
+        RFSEEK_SETTING(arrival_confirm_blocks, arrival_confirm_blocks, integer),
+        RFSEEK_SETTING(arrival_encircle, arrival_encircle, real),
+        RFSEEK_SETTING(arrival_far_amplitude, arrival_far_amplitude, real),
+        RFSEEK_SETTING(arrival_confirm_m, arrival_confirm_m, real),
+        RFSEEK_SETTING(loiter_radius_m, loiter_radius_m, real),
+        RFSEEK_SETTING(locate_orbits, locate_orbits, real),
+        RFSEEK_SETTING(locate_max_orbits, locate_max_orbits, real),
+        RFSEEK_SETTING(locate_retry, locate_retry, boolean),
+        RFSEEK_SETTING(locate_max_axis_m, locate_max_axis_m, real),
+        RFSEEK_SETTING(locate_gust_mps, locate_gust_mps, real),
+        RFSEEK_SETTING(locate_gust_tau_s, locate_gust_tau_s, real),
+        RFSEEK_SETTING(locate_altitude_m, locate_altitude_m, real),
+        RFSEEK_SETTING(locate_altitude_sigma_m, locate_altitude_sigma_m, real),
+    };
+    return table;
+}
+
+#undef RFSEEK_SETTING
+
+} // namespace
+
 void seeker_config::set(const std::string& key, const std::string& value)
 {
     auto number = [&]() {
@@ -248,158 +363,50 @@ void seeker_config::set(const std::string& key, const std::string& value)
                                         value + "' as a number");
         return v;
     };
-    auto boolean = [&]() {
-        if (value == "true" || value == "True" || value == "1")
-            return true;
-        if (value == "false" || value == "False" || value == "0")
-            return false;
-        throw std::invalid_argument("seeker_config." + key + ": '" + value +
-                                    "' is not true or false");
-    };
-    auto integer = [&]() {
-        const double v = number();
-        if (v != std::floor(v) || std::abs(v) > 2e9)
-            throw std::invalid_argument("seeker_config." + key + ": '" + value +
-                                        "' is not an integer");
-        return static_cast<int>(v);
-    };
-    if (key == "strategy")
+    if (key == "strategy") {
         strategy = value;
-    else if (key == "speed_mps")
-        speed_mps = number();
-    else if (key == "carrier_hz")
-        carrier_hz = number();
-    else if (key == "slot_period_s")
-        slot_period_s = number();
-    else if (key == "delta_rad")
-        delta_rad = number();
-    else if (key == "delta_deg")
-        delta_rad = number() * M_PI / 180.0;
-    else if (key == "delta_max_rad")
-        delta_max_rad = number();
-    else if (key == "delta_max_deg")
-        delta_max_rad = number() * M_PI / 180.0;
-    else if (key == "delta_step_rad")
-        delta_step_rad = number();
-    else if (key == "delta_step_deg")
-        delta_step_rad = number() * M_PI / 180.0;
-    else if (key == "delta_after_steps")
-        delta_after_steps = integer();
-    else if (key == "m_slots")
-        m_slots = integer();
-    else if (key == "circle_radius_m")
-        circle_radius_m = number();
-    else if (key == "moving_average_len")
-        moving_average_len = integer();
-    else if (key == "outlier_threshold_hz")
-        outlier_threshold_hz = number();
-    else if (key == "literal_eq4")
-        literal_eq4 = boolean();
-    else if (key == "relock_count")
-        relock_count = integer();
-    else if (key == "turn_rate_rad_per_s")
-        turn_rate_rad_per_s = number();
-    else if (key == "hold_after_missing")
-        hold_after_missing = integer();
-    else if (key == "initial_heading_rad") {
+        return;
+    }
+    if (key == "seed") {
+        seed = static_cast<std::uint64_t>(std::strtoull(value.c_str(), nullptr, 10));
+        return;
+    }
+    if (key == "initial_heading_rad") {
         if (value == "none" || value == "None" || value.empty())
             initial_heading_rad.reset();
         else
             initial_heading_rad = number();
-    } else if (key == "seed")
-        seed = static_cast<std::uint64_t>(std::strtoull(value.c_str(), nullptr, 10));
-    else if (key == "rss_run_slots")
-        rss_run_slots = integer();
-    else if (key == "rss_good_ratio")
-        rss_good_ratio = number();
-    else if (key == "rss_reverse_db")
-        rss_reverse_db = number();
-    else if (key == "rss_min_runs")
-        rss_min_runs = integer();
-    else if (key == "lock_count")
-        lock_count = integer();
-    else if (key == "min_snr_db")
-        min_snr_db = number();
-    else if (key == "stage1_fit")
-        stage1_fit = boolean();
-    else if (key == "adaptive_acquire_slots")
-        adaptive_acquire_slots = integer();
-    else if (key == "adaptive_relocate_slots")
-        adaptive_relocate_slots = integer();
-    else if (key == "adaptive_track_slots")
-        adaptive_track_slots = integer();
-    else if (key == "adaptive_gain")
-        adaptive_gain = number();
-    else if (key == "adaptive_delta_min_rad")
-        adaptive_delta_min_rad = number();
-    else if (key == "adaptive_delta_min_deg")
-        adaptive_delta_min_rad = number() * M_PI / 180.0;
-    else if (key == "adaptive_delta_max_rad")
-        adaptive_delta_max_rad = number();
-    else if (key == "adaptive_delta_max_deg")
-        adaptive_delta_max_rad = number() * M_PI / 180.0;
-    else if (key == "adaptive_reacquire_rad")
-        adaptive_reacquire_rad = number();
-    else if (key == "adaptive_reacquire_deg")
-        adaptive_reacquire_rad = number() * M_PI / 180.0;
-    else if (key == "adaptive_drift")
-        adaptive_drift = boolean();
-    else if (key == "adaptive_scatter_delta")
-        adaptive_scatter_delta = boolean();
-    else if (key == "adaptive_ground_track")
-        adaptive_ground_track = boolean();
-    else if (key == "ground_track_gain")
-        ground_track_gain = number();
-    else if (key == "ground_track_max_crab_rad")
-        ground_track_max_crab_rad = number();
-    else if (key == "ground_track_max_crab_deg")
-        ground_track_max_crab_rad = number() * M_PI / 180.0;
-    else if (key == "ground_track_gate")
-        ground_track_gate = number();
-    else if (key == "ground_track_rate_walk")
-        ground_track_rate_walk = number();
-    else if (key == "self_arrival")
-        self_arrival = boolean();
-    else if (key == "arrival_swing")
-        arrival_swing = number();
-    else if (key == "arrival_window_s")
-        arrival_window_s = number();
-    else if (key == "arrival_heading_band_rad")
-        arrival_heading_band_rad = number();
-    else if (key == "arrival_heading_band_deg")
-        arrival_heading_band_rad = number() * M_PI / 180.0;
-    else if (key == "arrival_power_rise_db")
-        arrival_power_rise_db = number();
-    else if (key == "arrival_block_slots")
-        arrival_block_slots = integer();
-    else if (key == "arrival_confirm_blocks")
-        arrival_confirm_blocks = integer();
-    else if (key == "arrival_encircle")
-        arrival_encircle = number();
-    else if (key == "arrival_far_amplitude")
-        arrival_far_amplitude = number();
-    else if (key == "arrival_confirm_m")
-        arrival_confirm_m = number();
-    else if (key == "loiter_radius_m")
-        loiter_radius_m = number();
-    else if (key == "locate_orbits")
-        locate_orbits = number();
-    else if (key == "locate_max_orbits")
-        locate_max_orbits = number();
-    else if (key == "locate_retry")
-        locate_retry = boolean();
-    else if (key == "locate_max_axis_m")
-        locate_max_axis_m = number();
-    else if (key == "locate_gust_mps")
-        locate_gust_mps = number();
-    else if (key == "locate_gust_tau_s")
-        locate_gust_tau_s = number();
-    else if (key == "locate_altitude_m")
-        locate_altitude_m = number();
-    else if (key == "locate_altitude_sigma_m")
-        locate_altitude_sigma_m = number();
-    else
+        return;
+    }
+    const auto it = settings().find(key);
+    if (it == settings().end())
         throw std::invalid_argument("seeker_config: unknown parameter '" + key + "'");
+    void* member = it->second.member(*this);
+    switch (it->second.kind) {
+    case setting::real:
+        *static_cast<double*>(member) = number();
+        break;
+    case setting::degrees:
+        *static_cast<double*>(member) = number() * M_PI / 180.0;
+        break;
+    case setting::integer: {
+        const double v = number();
+        if (v != std::floor(v) || std::abs(v) > 2e9)
+            throw std::invalid_argument("seeker_config." + key + ": '" + value +
+                                        "' is not an integer");
+        *static_cast<int*>(member) = static_cast<int>(v);
+        break;
+    }
+    case setting::boolean:
+        if (value == "true" || value == "True" || value == "1")
+            *static_cast<bool*>(member) = true;
+        else if (value == "false" || value == "False" || value == "0")
+            *static_cast<bool*>(member) = false;
+        else
+            throw std::invalid_argument("seeker_config." + key + ": '" + value +
+                                        "' is not true or false");
+        break;
+    }
 }
 
 std::vector<std::string> seeker::strategies()

@@ -8,6 +8,7 @@
  * homing wrapper in the closed loop (pass-through before arrival, declaration and fix).
  */
 
+#include "arrival_math.h"
 #include <gr-rfseek/arrival.h>
 #include <gr-rfseek/rng.h>
 #include <gr-rfseek/seeker.h>
@@ -68,6 +69,39 @@ pass_result straight_pass(double offset_m, double drift, std::uint64_t seed)
 }
 
 } // namespace
+
+TEST(arrival_math, solves_refuses_singular_systems_and_ridges_a_free_height)
+{
+    // A X = B against the closed form: A = [[4, 1], [2, 3]], det 10.
+    Eigen::Matrix2d a;
+    a << 4, 1, 2, 3;
+    Eigen::Matrix2d b = Eigen::Matrix2d::Identity();
+    ASSERT_TRUE(gr::rfseek::lu_solve(a, b));
+    EXPECT_NEAR(b(0, 0), 0.3, 1e-15);
+    EXPECT_NEAR(b(0, 1), -0.1, 1e-15);
+    EXPECT_NEAR(b(1, 0), -0.2, 1e-15);
+    EXPECT_NEAR(b(1, 1), 0.4, 1e-15);
+    // Singular: refused, whatever the right-hand side; NaN too.
+    Eigen::Matrix2d s;
+    s << 1, 2, 2, 4;
+    Eigen::Vector2d v(1, 1);
+    EXPECT_FALSE(gr::rfseek::lu_solve(s, v));
+    s(0, 0) = NAN;
+    v << 1, 1;
+    EXPECT_FALSE(gr::rfseek::lu_solve(s, v));
+    // A normal matrix with an unobserved parameter (a height without a prior): the ridge
+    // of 1e-9 x the largest diagonal keeps it solvable and leaves the rest as it was.
+    Eigen::MatrixXd n = Eigen::MatrixXd::Zero(3, 3);
+    n(0, 0) = 2.0;
+    n(1, 1) = 8.0;
+    Eigen::MatrixXd e = Eigen::MatrixXd::Identity(3, 2);
+    ASSERT_TRUE(gr::rfseek::solve_ridged(n, e));
+    EXPECT_NEAR(e(0, 0), 0.5, 1e-8);
+    EXPECT_NEAR(e(1, 1), 0.125, 1e-8);
+    EXPECT_EQ(e(2, 0), 0.0);
+    EXPECT_NEAR(gr::rfseek::median({ 3.0, 1.0, 2.0, 10.0 }), 2.5, 0.0);
+    EXPECT_NEAR(gr::rfseek::median({ 3.0, 1.0, 2.0 }), 2.0, 0.0);
+}
 
 TEST(overflight_detector, detects_straight_passes_at_50_150_400_m)
 {

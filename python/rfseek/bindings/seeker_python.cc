@@ -14,7 +14,55 @@
 
 namespace py = pybind11;
 
-void bind_seeker(py::module& m)
+namespace {
+
+// The fields of arrival without truth and of the emitter locator.
+void bind_arrival_fields(py::class_<gr::rfseek::seeker_config>& c)
+{
+    using gr::rfseek::seeker_config;
+#define RW(NAME, DOC) c.def_readwrite(#NAME, &seeker_config::NAME, DOC)
+    RW(self_arrival,
+       "detect the overflight, loiter and locate the emitter (any strategy); False: the "
+       "strategy only");
+    RW(arrival_swing, "overflight: frequency drop beyond turns and drift, x f_d,max");
+    RW(arrival_window_s, "overflight: the drop must happen within this time (s)");
+    RW(arrival_heading_band_rad,
+       "overflight: heading spread allowed over the drop (rad)");
+    RW(arrival_power_rise_db, "overflight: power peak above the drop's lower end (dB)");
+    RW(arrival_block_slots, "overflight: slots per median block");
+    RW(arrival_confirm_blocks, "overflight: consecutive blocks with the signature");
+    RW(arrival_encircle,
+       "encircling: headings all round over 120 s with the far-field Doppler amplitude "
+       "below this x f_d,max (0: off)");
+    RW(arrival_far_amplitude,
+       "a loiter whose first orbit shows a Doppler amplitude of at least this x "
+       "f_d,max is a false overflight: seek on at once (0: off)");
+    RW(arrival_confirm_m,
+       "arrival is declared when a location fit falls within this distance of the "
+       "estimate orbited, by the vehicle (m; 0: on the overflight alone)");
+    RW(loiter_radius_m, "loiter orbit radius (m), flown to the left");
+    RW(locate_orbits, "orbits of data before the first location fit");
+    RW(locate_max_orbits,
+       "no fix after this many orbits (extended by each move of the estimate and by the "
+       "arrival): seek again or give up");
+    RW(locate_retry, "seek again after locate_max_orbits without a fix (else done)");
+    RW(locate_max_axis_m,
+       "publish a fix when its 95 % ellipse semi-major axis is below (m)");
+    RW(locate_gust_mps,
+       "location fit: gust prior, std per axis (m/s; 0: a constant wind only)");
+    RW(locate_gust_tau_s, "location fit: gust correlation time (s)");
+    RW(locate_altitude_m,
+       "location fit: the vehicle's height above the emitter's ground as its altimeter "
+       "holds it (m; NaN: unknown, no height prior)");
+    RW(locate_altitude_sigma_m,
+       "location fit: std of the height prior, the altimeter's stated accuracy (m; 0: "
+       "the "
+       "height is fitted freely); fits more than 2.5 x this from locate_altitude_m are "
+       "not used");
+#undef RW
+}
+
+void bind_seeker_config(py::module& m)
 {
     using namespace gr::rfseek;
     py::class_<seeker_config> c(m,
@@ -82,51 +130,36 @@ void bind_seeker(py::module& m)
        "ground track: the crab moves while the bearing rate exceeds this many std");
     RW(ground_track_rate_walk,
        "ground track: random walk of the bearing rate in its filter (rad/s/sqrt(s))");
-    RW(self_arrival,
-       "detect the overflight, loiter and locate the emitter (any strategy); False: the "
-       "strategy only");
-    RW(arrival_swing, "overflight: frequency drop beyond turns and drift, x f_d,max");
-    RW(arrival_window_s, "overflight: the drop must happen within this time (s)");
-    RW(arrival_heading_band_rad,
-       "overflight: heading spread allowed over the drop (rad)");
-    RW(arrival_power_rise_db, "overflight: power peak above the drop's lower end (dB)");
-    RW(arrival_block_slots, "overflight: slots per median block");
-    RW(arrival_confirm_blocks, "overflight: consecutive blocks with the signature");
-    RW(arrival_encircle,
-       "encircling: headings all round over 120 s with the far-field Doppler amplitude "
-       "below this x f_d,max (0: off)");
-    RW(arrival_far_amplitude,
-       "a loiter whose first orbit shows a Doppler amplitude of at least this x "
-       "f_d,max is a false overflight: seek on at once (0: off)");
-    RW(arrival_confirm_m,
-       "arrival is declared when a location fit falls within this distance of the "
-       "estimate orbited, by the vehicle (m; 0: on the overflight alone)");
-    RW(loiter_radius_m, "loiter orbit radius (m), flown to the left");
-    RW(locate_orbits, "orbits of data before the first location fit");
-    RW(locate_max_orbits,
-       "no fix after this many orbits (extended by each move of the estimate and by the "
-       "arrival): seek again or give up");
-    RW(locate_retry, "seek again after locate_max_orbits without a fix (else done)");
-    RW(locate_max_axis_m,
-       "publish a fix when its 95 % ellipse semi-major axis is below (m)");
-    RW(locate_gust_mps,
-       "location fit: gust prior, std per axis (m/s; 0: a constant wind only)");
-    RW(locate_gust_tau_s, "location fit: gust correlation time (s)");
-    RW(locate_altitude_m,
-       "location fit: the vehicle's height above the emitter's ground as its altimeter "
-       "holds it (m; NaN: unknown, no height prior)");
-    RW(locate_altitude_sigma_m,
-       "location fit: std of the height prior, the altimeter's stated accuracy (m; 0: "
-       "the "
-       "height is fitted freely); fits more than 2.5 x this from locate_altitude_m are "
-       "not used");
+    bind_arrival_fields(c);
 #undef RW
-    c.def("validate", &seeker_config::validate)
-        .def_static("keys", &seeker_config::keys)
-        .def("set", &seeker_config::set, py::arg("key"), py::arg("value"))
-        .def_property_readonly("max_doppler_hz", &seeker_config::max_doppler_hz)
+    c.def("validate",
+          &seeker_config::validate,
+          "Raise ValueError naming the first field out of its allowed range.")
+        .def_static(
+            "keys",
+            &seeker_config::keys,
+            "Every key set() accepts (fields, and *_deg aliases of the *_rad ones).")
+        .def("set",
+             &seeker_config::set,
+             py::arg("key"),
+             py::arg("value"),
+             "Set a field from text (as --set KEY=VALUE does): numbers, true/false, "
+             "degrees for *_deg keys, 'none' for initial_heading_rad. ValueError for an "
+             "unknown key or an unparsable value; ranges are checked by validate().")
+        .def_property_readonly("max_doppler_hz",
+                               &seeker_config::max_doppler_hz,
+                               "f_d,max = speed_mps * carrier_hz / c (Hz).")
         .def_property_readonly("effective_outlier_threshold_hz",
-                               &seeker_config::effective_outlier_threshold_hz);
+                               &seeker_config::effective_outlier_threshold_hz,
+                               "outlier_threshold_hz, or 2 f_d,max when it is 0.");
+}
+
+} // namespace
+
+void bind_seeker(py::module& m)
+{
+    using namespace gr::rfseek;
+    bind_seeker_config(m);
 
     py::class_<measurement>(
         m, "measurement", "One slot's measurement as the seeker sees it.")
@@ -155,12 +188,25 @@ void bind_seeker(py::module& m)
         .def_readonly("location", &command::location);
 
     py::class_<seeker, std::unique_ptr<seeker>>(m, "seeker", "A seeking strategy.")
-        .def(py::init(&seeker::make), py::arg("config"))
-        .def_static("make", &seeker::make, py::arg("config"))
-        .def_static("strategies", &seeker::strategies)
-        .def("update", &seeker::update, py::arg("measurement"))
-        .def("config", &seeker::config)
-        .def("stage", &seeker::stage)
-        .def("theta_est_rad", &seeker::theta_est_rad)
-        .def("updates", &seeker::updates);
+        .def(py::init(&seeker::make),
+             py::arg("config"),
+             "The strategy config.strategy with config's constants (validated).")
+        .def_static("make",
+                    &seeker::make,
+                    py::arg("config"),
+                    "The strategy config.strategy with config's constants (validated).")
+        .def_static("strategies", &seeker::strategies, "The strategy names.")
+        .def("update",
+             &seeker::update,
+             py::arg("measurement"),
+             "Take one slot's measurement; return the command (heading to fly, stage, "
+             "status).")
+        .def("config", &seeker::config, "The seeker_config it runs with.")
+        .def("stage",
+             &seeker::stage,
+             "1 circle or acquisition, 2 perturbations or probes, 3 loiter (arrival).")
+        .def("theta_est_rad",
+             &seeker::theta_est_rad,
+             "The current estimate of the emitter's bearing (rad).")
+        .def("updates", &seeker::updates, "Heading updates applied so far.");
 }

@@ -13,6 +13,47 @@
 
 namespace py = pybind11;
 
+namespace {
+
+// The per-slot records as a dict of numpy arrays (for plots).
+py::dict record_columns(const gr::rfseek::run_result& r)
+{
+    using gr::rfseek::slot_record;
+    const auto& v = r.records;
+    py::dict d;
+    auto col = [&](const char* name, auto getter) {
+        py::array_t<double> a(v.size());
+        auto* p = a.mutable_data();
+        for (std::size_t i = 0; i < v.size(); ++i)
+            p[i] = static_cast<double>(getter(v[i]));
+        d[name] = a;
+    };
+    col("slot", [](const slot_record& s) { return s.slot; });
+    col("time_s", [](const slot_record& s) { return s.time_s; });
+    col("x_m", [](const slot_record& s) { return s.x_m; });
+    col("y_m", [](const slot_record& s) { return s.y_m; });
+    col("heading_rad", [](const slot_record& s) { return s.heading_rad; });
+    col("measured_heading_rad",
+        [](const slot_record& s) { return s.measured_heading_rad; });
+    col("distance_m", [](const slot_record& s) { return s.distance_m; });
+    col("distance_flown_m", [](const slot_record& s) { return s.distance_flown_m; });
+    col("cfo_hz", [](const slot_record& s) { return s.cfo_hz; });
+    col("doppler_hz", [](const slot_record& s) { return s.doppler_hz; });
+    col("true_snr_db", [](const slot_record& s) { return s.true_snr_db; });
+    col("freq_hz", [](const slot_record& s) { return s.freq_hz; });
+    col("snr_db", [](const slot_record& s) { return s.snr_db; });
+    col("power_db", [](const slot_record& s) { return s.power_db; });
+    col("valid", [](const slot_record& s) { return s.valid; });
+    col("stage", [](const slot_record& s) { return s.stage; });
+    col("theta_est_rad", [](const slot_record& s) { return s.theta_est_rad; });
+    col("cmd_heading_rad", [](const slot_record& s) { return s.cmd_heading_rad; });
+    col("update", [](const slot_record& s) { return s.update; });
+    col("status", [](const slot_record& s) { return s.status; });
+    return d;
+}
+
+} // namespace
+
 void bind_simulation(py::module& m)
 {
     using namespace gr::rfseek;
@@ -92,46 +133,7 @@ void bind_simulation(py::module& m)
         .def_readonly("location", &run_result::location)
         .def_readonly("location_vehicle_x_m", &run_result::location_vehicle_x_m)
         .def_readonly("location_vehicle_y_m", &run_result::location_vehicle_y_m)
-        .def(
-            "columns",
-            [](const run_result& r) {
-                // The per-slot records as a dict of numpy arrays (for plots).
-                const auto& v = r.records;
-                py::dict d;
-                auto col = [&](const char* name, auto getter) {
-                    py::array_t<double> a(v.size());
-                    auto* p = a.mutable_data();
-                    for (std::size_t i = 0; i < v.size(); ++i)
-                        p[i] = static_cast<double>(getter(v[i]));
-                    d[name] = a;
-                };
-                col("slot", [](const slot_record& s) { return s.slot; });
-                col("time_s", [](const slot_record& s) { return s.time_s; });
-                col("x_m", [](const slot_record& s) { return s.x_m; });
-                col("y_m", [](const slot_record& s) { return s.y_m; });
-                col("heading_rad", [](const slot_record& s) { return s.heading_rad; });
-                col("measured_heading_rad",
-                    [](const slot_record& s) { return s.measured_heading_rad; });
-                col("distance_m", [](const slot_record& s) { return s.distance_m; });
-                col("distance_flown_m",
-                    [](const slot_record& s) { return s.distance_flown_m; });
-                col("cfo_hz", [](const slot_record& s) { return s.cfo_hz; });
-                col("doppler_hz", [](const slot_record& s) { return s.doppler_hz; });
-                col("true_snr_db", [](const slot_record& s) { return s.true_snr_db; });
-                col("freq_hz", [](const slot_record& s) { return s.freq_hz; });
-                col("snr_db", [](const slot_record& s) { return s.snr_db; });
-                col("power_db", [](const slot_record& s) { return s.power_db; });
-                col("valid", [](const slot_record& s) { return s.valid; });
-                col("stage", [](const slot_record& s) { return s.stage; });
-                col("theta_est_rad",
-                    [](const slot_record& s) { return s.theta_est_rad; });
-                col("cmd_heading_rad",
-                    [](const slot_record& s) { return s.cmd_heading_rad; });
-                col("update", [](const slot_record& s) { return s.update; });
-                col("status", [](const slot_record& s) { return s.status; });
-                return d;
-            },
-            "Per-slot records as a dict of numpy arrays.");
+        .def("columns", &record_columns, "Per-slot records as a dict of numpy arrays.");
 
     py::class_<simulation>(
         m,
@@ -140,13 +142,21 @@ void bind_simulation(py::module& m)
         .def(py::init<const scenario&, const seeker_config&, const estimator_config&>(),
              py::arg("scenario"),
              py::arg("seeker_config"),
-             py::arg("estimator_config") = estimator_config())
+             py::arg("estimator_config") = estimator_config(),
+             "The loop of a scenario, a seeker configuration and the estimator's "
+             "settings (all validated: ValueError names the field).")
         .def("run",
              &simulation::run,
              py::arg("keep_records") = true,
-             py::call_guard<py::gil_scoped_release>())
+             py::call_guard<py::gil_scoped_release>(),
+             "Fly to arrival or the flight cap; a run_result (summary, and every slot's "
+             "record when keep_records). The same seed gives the same run.")
+        .def("scenario_config", &simulation::scenario_config, "The scenario it flies.")
+        .def("seeker_cfg", &simulation::seeker_cfg, "The seeker configuration it flies.")
         .def_static("seeker_for",
                     &simulation::seeker_for,
                     py::arg("scenario"),
-                    py::arg("strategy"));
+                    py::arg("strategy"),
+                    "A seeker_config for the scenario: its speed, carrier, slot period, "
+                    "turn rate and seed, the paper's constants otherwise.");
 }

@@ -1,0 +1,301 @@
+/* -*- c++ -*- */
+/*
+ * Copyright 2026 gr-rfseek authors.
+ * SPDX-License-Identifier: GPL-3.0-or-later
+ *
+ * The emitter locator (arrival.h, docs/seeker.md "The location fit"): a grid search for
+ * a start, a constant-wind fit with outlier rejection, the fit with gusts, and the 95 %
+ * ellipse from the covariance inflated for correlated residuals. The model and its
+ * solver are in location_model.
+ */
+
+#include "arrival_math.h"
+#include "location_model.h"
+#include <gr-rfseek/arrival.h>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <memory>
+#include <stdexcept>
+
+namespace gr {
+namespace rfseek {
+
+using location::gust_fit;
+using location::params;
+using location::problem;
+
+emitter_locator::emitter_locator(double wavelength_m,
+                                 double search_radius_m,
+                                 double gust_mps,
+                                 double gust_tau_s,
+                                 double altitude_m,
+                                 double altitude_sigma_m)
+    : d_lambda(wavelength_m),
+      d_search(search_radius_m),
+      d_gust(gust_mps),
+      d_gust_tau(gust_tau_s),
+      d_alt(altitude_m),
+      d_alt_sigma(altitude_sigma_m)
+{
+    if (!(altitude_sigma_m >= 0.0 && altitude_sigma_m <= 1e4))
+        throw std::invalid_argument(
+            "emitter_locator: altitude_sigma_m must be in [0, 1e4] (0: no prior)");
+    if (altitude_sigma_m > 0.0 && !(altitude_m >= 0.0 && altitude_m <= 1e4))
+        throw std::invalid_argument(
+            "emitter_locator: altitude_m must be in [0, 1e4] with a height prior");
+    if (!(gust_mps >= 0.0 && gust_mps <= 50.0))
+        throw std::invalid_argument("emitter_locator: gust_mps must be in [0, 50]");
+    if (!(gust_tau_s >= 0.1 && gust_tau_s <= 3600.0))
+        throw std::invalid_argument("emitter_locator: gust_tau_s must be in [0.1, 3600]");
+    if (!(wavelength_m > 0.0) || !std::isfinite(wavelength_m))
+        throw std::invalid_argument("emitter_locator: wavelength_m must be > 0");
+    if (!(search_radius_m > 0.0) || !std::isfinite(search_radius_m))
+        throw std::invalid_argument("emitter_locator: search_radius_m must be > 0");
+}
+
+void emitter_locator::clear()
+{
+    d_t.clear();
+    d_x.clear();
+    d_y.clear();
+    d_vx.clear();
+    d_vy.clear();
+    d_f.clear();
+}
+
+void emitter_locator::add(
+    double time_s, double x_m, double y_m, double vx_mps, double vy_mps, double freq_hz)
+{
+    if (!(std::isfinite(time_s) && std::isfinite(x_m) && std::isfinite(y_m) &&
+          std::isfinite(vx_mps) && std::isfinite(vy_mps) && std::isfinite(freq_hz)))
+        return;
+    d_t.push_back(time_s);
+    d_x.push_back(x_m);
+    d_y.push_back(y_m);
+    d_vx.push_back(vx_mps);
+    d_vy.push_back(vy_mps);
+    d_f.push_back(freq_hz);
+}
+
+namespace {
+
+// Grid search (decimated, bounded cost) around the path's centroid: emitter candidates
+// every 30 m within the search radius, for calm air and 3 and 6 m/s from 8 directions (a
+// strong wind moves the emitter by hundreds of metres in the air frame over an orbit:
+// the fit must start near it), at the height prior (at least 10 m: at zero the cost is
+// spiky where the path passes over a candidate), else low and high.
+params
+grid_start(problem& pr, double search_m, double altitude_m, double altitude_sigma_m)
+{
+    const std::size_t n = pr.t.size();
+    double cx = 0, cy = 0;
+    for (std::size_t k = 0; k < n; ++k) {
+        cx += pr.x[k];
+        cy += pr.y[k];
+    }
+    cx /= n;
+    cy /= n;
+    pr.step = std::max<std::size_t>(1, n / 120);
+    std::vector<double> r;
+    params best{ cx, cy, 0.0, 0.0, 0.0 };
+    double best_cost = std::numeric_limits<double>::infinity();
+    const double spacing = 30.0;
+    const int gm = static_cast<int>(std::ceil(search_m / spacing));
+    const double tau2 = 100.0; // (10 Hz)^2: a robust cost for the grid
+    std::vector<std::pair<double, double>> winds{ { 0.0, 0.0 } };
+    for (double ws : { 3.0, 6.0 })
+        for (int q = 0; q < 8; ++q)
+            winds.emplace_back(ws * std::cos(q * M_PI / 4), ws * std::sin(q * M_PI / 4));
+    const std::vector<double> heights =
+        altitude_sigma_m > 0.0 ? std::vector<double>{ std::max(altitude_m, 10.0) }
+                               : std::vector<double>{ 10.0, 100.0 };
+    for (const auto& wv : winds)
+        for (double h : heights)
+            for (int i = -gm; i <= gm; ++i)
+                for (int j = -gm; j <= gm; ++j) {
+                    if (i * i + j * j > gm * gm)
+                        continue;
+                    const params p{
+                        cx + i * spacing, cy + j * spacing, wv.first, wv.second, h
+                    };
+                    pr.residuals(p, r);
+                    double cost = 0.0;
+                    for (std::size_t k = 0; k < n; k += pr.step)
+                        cost += std::min(r[k] * r[k], tau2);
+                    if (cost < best_cost) {
+                        best_cost = cost;
+                        best = p;
+                    }
+                }
+    pr.step = 1;
+    return best;
+}
+
+// The constant-wind fit (maximum a posteriori with the wind and height priors) from th,
+// with two rounds of outlier rejection (beyond 4 robust sigma, at least 1 Hz); s2 starts
+// at the grid's residual scale and ends at the fit's residual variance. Returns the
+// inliers.
+int constant_wind_fit(problem& pr, const gust_fit& base, Eigen::VectorXd& th, double& s2)
+{
+    const std::size_t n = pr.t.size();
+    Eigen::VectorXd r;
+    int used = 0;
+    for (int round = 0; round < 3; ++round) {
+        base.run(th, s2, 60);
+        const double ss = base.residuals(th, r);
+        used = static_cast<int>(pr.inliers());
+        s2 = std::max(ss / std::max(used - 7, 1), 0.0625); // at least (0.25 Hz)^2
+        if (round == 2)
+            break;
+        std::vector<double> a;
+        for (std::size_t k = 0; k < n; ++k)
+            if (pr.use[k])
+                a.push_back(std::abs(r(k)));
+        const double sigma = std::max(1.4826 * median(a), 0.25);
+        for (std::size_t k = 0; k < n; ++k)
+            pr.use[k] = std::abs(r(k)) <= std::max(4.0 * sigma, 1.0);
+    }
+    return used;
+}
+
+// Correlated residuals (multipath along the path, gusts) carry less information than
+// their number says: the covariance is inflated by the larger of the AR(1) factor and
+// the variance ratio of 1 s block means (B var(mean) / var, 1 for white residuals).
+// r0 is set to the inliers' sum of squares.
+double inflation_of(const problem& pr, const Eigen::VectorXd& r, int used, double& r0)
+{
+    double r1 = 0.0, prev = 0.0;
+    bool have_prev = false;
+    r0 = 0.0;
+    for (std::size_t k = 0; k < pr.t.size(); ++k) {
+        if (!pr.use[k])
+            continue;
+        r0 += r(k) * r(k);
+        if (have_prev)
+            r1 += prev * r(k);
+        prev = r(k);
+        have_prev = true;
+    }
+    const double rho = std::clamp(r0 > 0.0 ? r1 / r0 : 0.0, 0.0, 0.98);
+    double inflation = (1.0 + rho) / (1.0 - rho);
+    const std::size_t B = 20;
+    double sum = 0.0, bm2 = 0.0;
+    std::size_t in_block = 0, blocks = 0;
+    for (std::size_t k = 0; k < pr.t.size(); ++k) {
+        if (!pr.use[k])
+            continue;
+        sum += r(k);
+        if (++in_block == B) {
+            bm2 += (sum / B) * (sum / B);
+            sum = 0.0;
+            in_block = 0;
+            ++blocks;
+        }
+    }
+    if (blocks >= 5 && r0 > 0.0)
+        inflation = std::max(inflation, B * (bm2 / blocks) / (r0 / used));
+    return inflation;
+}
+
+// The 95 % ellipse and the wind's standard deviation from the covariance
+// (J^T J / (s2 inflation) + priors)^-1 = s2 inflation N^-1, N the Gauss-Newton matrix
+// with the priors weighted by s2 inflation: the inflation is the data's, not the
+// priors'. False if N is singular.
+bool ellipse(const gust_fit& fit,
+             const Eigen::VectorXd& th,
+             double var,
+             emitter_location& out)
+{
+    Eigen::MatrixXd N;
+    Eigen::VectorXd g, r;
+    fit.build(th, var, N, g, r);
+    Eigen::MatrixXd cov = Eigen::MatrixXd::Identity(fit.size(), 4);
+    if (!solve_ridged(N, cov)) // the (p_x, p_y, w_x, w_y) columns of N^-1
+        return false;
+    const double sxx = var * cov(0, 0), syy = var * cov(1, 1);
+    const double sxy = var * 0.5 * (cov(0, 1) + cov(1, 0));
+    const double tr = 0.5 * (sxx + syy);
+    const double disc = std::sqrt(0.25 * (sxx - syy) * (sxx - syy) + sxy * sxy);
+    const double chi2_95 = 5.991464547107979; // 2 degrees of freedom
+    out.major_m = std::sqrt(chi2_95 * std::max(tr + disc, 0.0));
+    out.minor_m = std::sqrt(chi2_95 * std::max(tr - disc, 0.0));
+    out.major_angle_rad = 0.5 * std::atan2(2.0 * sxy, sxx - syy);
+    out.wind_sigma_mps = std::sqrt(std::max(0.5 * var * (cov(2, 2) + cov(3, 3)), 0.0));
+    return true;
+}
+
+} // namespace
+
+emitter_location emitter_locator::fit(double vehicle_x_m, double vehicle_y_m) const
+{
+    emitter_location out;
+    const std::size_t n = d_t.size();
+    if (n < 50)
+        return out;
+    problem pr{ d_t, d_x, d_y, d_vx, d_vy, d_f, d_lambda, d_t.back(), {}, 1 };
+    pr.use.assign(n, 1);
+    out.time_s = pr.tf;
+    out.dr_x_m = vehicle_x_m;
+    out.dr_y_m = vehicle_y_m;
+
+    const params best = grid_start(pr, d_search, d_alt, d_alt_sigma);
+    // The grid's residual scale weights the priors until a fit gives a better one.
+    std::vector<double> rg;
+    pr.residuals(best, rg);
+    for (double& v : rg)
+        v = std::abs(v);
+    double s2 = std::pow(std::max(1.4826 * median(rg), 0.25), 2);
+
+    // Constant wind first; then, with a gust prior, the fit with gusts from there.
+    gust_fit base(pr, 0.0, d_gust_tau, d_alt, d_alt_sigma);
+    Eigen::VectorXd th = Eigen::Map<const Eigen::VectorXd>(best.data(), 5);
+    const int used = constant_wind_fit(pr, base, th, s2);
+    if (used < 50)
+        return out;
+    Eigen::VectorXd r;
+    std::unique_ptr<gust_fit> gf;
+    const gust_fit* fin = &base;
+    if (d_gust > 0.0) {
+        // Gusts: weight the prior by the constant-wind fit's residual variance, then
+        // once more by the gust fit's own, which also weighs the final covariance. The
+        // residual variance counts the parameters the gust states took from the data
+        // (effective_params): the gusts can absorb noise and multipath, and the raw
+        // residual variance would then weaken the prior and shrink the ellipse.
+        gf = std::make_unique<gust_fit>(pr, d_gust, d_gust_tau, d_alt, d_alt_sigma);
+        th.conservativeResize(gf->size());
+        th.tail(gf->size() - 5).setZero();
+        auto variance = [&]() {
+            const double dof = used - 2.0 - gf->effective_params(th, s2);
+            return std::max(gf->residuals(th, r) / std::max(dof, 1.0), 0.0625);
+        };
+        gf->run(th, s2, 30);
+        s2 = variance();
+        gf->run(th, s2, 30);
+        s2 = variance();
+        out.gust_knots = static_cast<int>(gf->knots());
+        fin = gf.get();
+    }
+    double c0 = 0.0, r0 = 0.0;
+    fin->residuals(th, r, nullptr, &c0);
+    const double inflation = inflation_of(pr, r, used, r0);
+    if (!ellipse(*fin, th, s2 * inflation, out))
+        return out;
+    out.east_m = th(0) - vehicle_x_m;
+    out.north_m = th(1) - vehicle_y_m;
+    out.wind_east_mps = th(2);
+    out.wind_north_mps = th(3);
+    out.altitude_m = std::abs(th(4));
+    out.cfo_hz = c0;
+    out.rms_hz = std::sqrt(r0 / used);
+    out.used = used;
+    out.inflation = inflation;
+    out.valid = std::isfinite(out.east_m) && std::isfinite(out.north_m) &&
+                std::isfinite(out.major_m) && std::isfinite(out.minor_m) &&
+                std::isfinite(out.wind_sigma_mps) && std::isfinite(out.altitude_m) &&
+                std::isfinite(out.cfo_hz);
+    return out;
+}
+
+} // namespace rfseek
+} // namespace gr

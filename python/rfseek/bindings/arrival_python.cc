@@ -16,33 +16,68 @@ void bind_arrival(py::module& m)
 {
     using namespace gr::rfseek;
     py::class_<overflight_config>(m, "overflight_config", "Overflight detector settings.")
-        .def(py::init<>())
-        .def_readwrite("max_doppler_hz", &overflight_config::max_doppler_hz)
-        .def_readwrite("slot_period_s", &overflight_config::slot_period_s)
-        .def_readwrite("swing", &overflight_config::swing)
-        .def_readwrite("window_s", &overflight_config::window_s)
-        .def_readwrite("heading_band_rad", &overflight_config::heading_band_rad)
-        .def_readwrite("power_rise_db", &overflight_config::power_rise_db)
-        .def_readwrite("drift_s", &overflight_config::drift_s)
-        .def_readwrite("block_slots", &overflight_config::block_slots)
-        .def_readwrite("confirm_blocks", &overflight_config::confirm_blocks)
-        .def_readwrite("min_snr_db", &overflight_config::min_snr_db)
-        .def_readwrite("encircle_amplitude", &overflight_config::encircle_amplitude);
+        .def(py::init<>(),
+             "The detector's constants (defaults: docs/seeker.md); keyword arguments set "
+             "them.")
+        .def_readwrite("max_doppler_hz",
+                       &overflight_config::max_doppler_hz,
+                       "f_d,max = v f_c / c (airspeed)")
+        .def_readwrite(
+            "slot_period_s", &overflight_config::slot_period_s, "Slot period (s).")
+        .def_readwrite(
+            "swing",
+            &overflight_config::swing,
+            "Required frequency drop beyond what the heading change explains, x f_d,max.")
+        .def_readwrite("window_s",
+                       &overflight_config::window_s,
+                       "the drop must happen within this time")
+        .def_readwrite("heading_band_rad",
+                       &overflight_config::heading_band_rad,
+                       "heading spread allowed over the drop (60 deg)")
+        .def_readwrite("power_rise_db",
+                       &overflight_config::power_rise_db,
+                       "peak power over the drop above its lower end")
+        .def_readwrite("drift_s",
+                       &overflight_config::drift_s,
+                       "The CFO drift is fitted over this much flight before each block "
+                       "(any headings).")
+        .def_readwrite("block_slots",
+                       &overflight_config::block_slots,
+                       "slots per median block (2 s at 50 ms)")
+        .def_readwrite("confirm_blocks",
+                       &overflight_config::confirm_blocks,
+                       "consecutive blocks the signature must hold")
+        .def_readwrite("min_snr_db",
+                       &overflight_config::min_snr_db,
+                       "measurements below are not used")
+        .def_readwrite(
+            "encircle_amplitude",
+            &overflight_config::encircle_amplitude,
+            "Encircling: detected also when, over drift_s with headings all round, the "
+            "far-field Doppler amplitude stays below this x f_d,max (0: off).");
 
     py::class_<doppler_amplitude>(
         m,
         "doppler_amplitude",
         "The Doppler amplitude of a turn: hypot(p, q) of c + d t + p cos(psi) + q "
         "sin(psi) fitted robustly; f_d,max far from the emitter, much less near it.")
-        .def(py::init<>())
+        .def(py::init<>(), "An empty amplitude fit.")
         .def("add",
              &doppler_amplitude::add,
              py::arg("time_s"),
              py::arg("heading_rad"),
-             py::arg("freq_hz"))
-        .def("clear", &doppler_amplitude::clear)
+             py::arg("freq_hz"),
+             "Add one measurement: time (s), heading (rad), frequency (Hz); non-finite "
+             "ones are skipped.")
+        .def("clear",
+             &doppler_amplitude::clear,
+             "One measurement (non-finite ones are skipped; at most 20000 are kept).")
         .def("__len__", &doppler_amplitude::size)
-        .def_property_readonly("amplitude", &doppler_amplitude::amplitude);
+        .def_property_readonly(
+            "amplitude",
+            &doppler_amplitude::amplitude,
+            "The fitted amplitude (Hz); NaN with fewer than 8 measurements or headings "
+            "that do not go all round (a gap of 120 deg or more).");
 
     py::class_<overflight_detector>(
         m,
@@ -51,7 +86,8 @@ void bind_arrival(py::module& m)
         "heading while the power peaks; or the encircling one: headings all round, the "
         "far-field Doppler amplitude collapsed.")
         .def(py::init<const overflight_config&>(),
-             py::arg("config") = overflight_config())
+             py::arg("config") = overflight_config(),
+             "A detector with these constants (validated).")
         .def("update",
              &overflight_detector::update,
              py::arg("time_s"),
@@ -59,36 +95,74 @@ void bind_arrival(py::module& m)
              py::arg("power_db"),
              py::arg("snr_db"),
              py::arg("valid"),
-             py::arg("heading_rad"))
-        .def_property_readonly("detected", &overflight_detector::detected)
-        .def_property_readonly("detect_time_s", &overflight_detector::detect_time_s)
-        .def_property_readonly("last_drop_hz", &overflight_detector::last_drop_hz)
+             py::arg("heading_rad"),
+             "One slot. heading_rad: the measured heading. Returns true once detected "
+             "(and from then on).")
+        .def_property_readonly("detected",
+                               &overflight_detector::detected,
+                               "The overflight (or encircling) signature was seen.")
+        .def_property_readonly("detect_time_s",
+                               &overflight_detector::detect_time_s,
+                               "Time of the slot that completed the detection.")
+        .def_property_readonly("last_drop_hz",
+                               &overflight_detector::last_drop_hz,
+                               "The largest heading-corrected drop seen in the last "
+                               "block (diagnostics, Hz).")
         .def_property_readonly("last_amplitude_hz",
-                               &overflight_detector::last_amplitude_hz)
-        .def_property_readonly("encircled", &overflight_detector::encircled)
-        .def("reset", &overflight_detector::reset);
+                               &overflight_detector::last_amplitude_hz,
+                               "The far-field Doppler amplitude fitted at the last block "
+                               "(Hz; NaN while the headings do not go all round).")
+        .def_property_readonly(
+            "encircled",
+            &overflight_detector::encircled,
+            "The detection came from the encircling signature, not an overflight.")
+        .def("reset", &overflight_detector::reset, "Forget everything (a new approach).");
 
     py::class_<emitter_location>(
         m, "emitter_location", "A location fix (docs/seeker.md).")
-        .def(py::init<>())
-        .def_readonly("valid", &emitter_location::valid)
-        .def_readonly("time_s", &emitter_location::time_s)
-        .def_readonly("east_m", &emitter_location::east_m)
-        .def_readonly("north_m", &emitter_location::north_m)
-        .def_readonly("dr_x_m", &emitter_location::dr_x_m)
-        .def_readonly("dr_y_m", &emitter_location::dr_y_m)
-        .def_readonly("major_m", &emitter_location::major_m)
-        .def_readonly("minor_m", &emitter_location::minor_m)
-        .def_readonly("major_angle_rad", &emitter_location::major_angle_rad)
-        .def_readonly("wind_east_mps", &emitter_location::wind_east_mps)
-        .def_readonly("wind_north_mps", &emitter_location::wind_north_mps)
-        .def_readonly("wind_sigma_mps", &emitter_location::wind_sigma_mps)
-        .def_readonly("altitude_m", &emitter_location::altitude_m)
-        .def_readonly("cfo_hz", &emitter_location::cfo_hz)
-        .def_readonly("rms_hz", &emitter_location::rms_hz)
-        .def_readonly("used", &emitter_location::used)
-        .def_readonly("inflation", &emitter_location::inflation)
-        .def_readonly("gust_knots", &emitter_location::gust_knots);
+        .def(py::init<>(), "An empty location (invalid).")
+        .def_readonly(
+            "valid", &emitter_location::valid, "A fix was made (every field finite).")
+        .def_readonly("time_s", &emitter_location::time_s, "time of the fix")
+        .def_readonly("east_m",
+                      &emitter_location::east_m,
+                      "emitter relative to the vehicle at time_s")
+        .def_readonly(
+            "north_m", &emitter_location::north_m, "(x east, y north, compass frame)")
+        .def_readonly("dr_x_m",
+                      &emitter_location::dr_x_m,
+                      "vehicle in the dead-reckoned frame (origin:")
+        .def_readonly("dr_y_m", &emitter_location::dr_y_m, "where the loiter began)")
+        .def_readonly("major_m",
+                      &emitter_location::major_m,
+                      "95 % uncertainty ellipse: semi-major axis")
+        .def_readonly("minor_m", &emitter_location::minor_m, "semi-minor axis")
+        .def_readonly("major_angle_rad",
+                      &emitter_location::major_angle_rad,
+                      "direction of the major axis (CCW from east)")
+        .def_readonly("wind_east_mps",
+                      &emitter_location::wind_east_mps,
+                      "estimated wind (nuisance)")
+        .def_readonly("wind_north_mps",
+                      &emitter_location::wind_north_mps,
+                      "The fit's mean wind, north component (m/s).")
+        .def_readonly("wind_sigma_mps",
+                      &emitter_location::wind_sigma_mps,
+                      "standard error of each wind component")
+        .def_readonly("altitude_m",
+                      &emitter_location::altitude_m,
+                      "estimated height above the emitter (nuisance)")
+        .def_readonly("cfo_hz", &emitter_location::cfo_hz, "estimated CFO at time_s")
+        .def_readonly(
+            "rms_hz", &emitter_location::rms_hz, "residual RMS of the fit's inliers")
+        .def_readonly(
+            "used", &emitter_location::used, "measurements in the fit (inliers)")
+        .def_readonly("inflation",
+                      &emitter_location::inflation,
+                      "covariance inflation for correlated residuals")
+        .def_readonly("gust_knots",
+                      &emitter_location::gust_knots,
+                      "gust states per axis (0: constant wind)");
 
     py::class_<emitter_locator>(
         m, "emitter_locator", "The emitter from the Doppler along a dead-reckoned path.")
@@ -98,7 +172,9 @@ void bind_arrival(py::module& m)
              py::arg("gust_mps") = 0.0,
              py::arg("gust_tau_s") = 5.0,
              py::arg("altitude_m") = 0.0,
-             py::arg("altitude_sigma_m") = 0.0)
+             py::arg("altitude_sigma_m") = 0.0,
+             "A locator for the wavelength, a search radius around the path, a gust "
+             "prior (std, correlation time) and a height prior (altitude, std; 0: none).")
         .def("add",
              &emitter_locator::add,
              py::arg("time_s"),
@@ -106,12 +182,20 @@ void bind_arrival(py::module& m)
              py::arg("y_m"),
              py::arg("vx_mps"),
              py::arg("vy_mps"),
-             py::arg("freq_hz"))
+             py::arg("freq_hz"),
+             "wavelength_m: lambda = c / f_c; search_radius_m: grid extent around the "
+             "path; gust_mps, gust_tau_s: the gust prior (first-order Gauss-Markov, std "
+             "per axis and correlation time; gust_mps = 0: a constant wind only); "
+             "altitude_m, altitude_sigma_m: the height prior (the vehicle's height above "
+             "the emitter's ground as its altimeter holds it, and that figure's std; "
+             "sigma 0: fitted freely). The mean wind always has a weak prior (0 +- 15 "
+             "m/s per axis).")
         .def("__len__", &emitter_locator::size)
-        .def("clear", &emitter_locator::clear)
+        .def("clear", &emitter_locator::clear, "Forget the samples.")
         .def("fit",
              &emitter_locator::fit,
              py::arg("vehicle_x_m"),
              py::arg("vehicle_y_m"),
-             py::call_guard<py::gil_scoped_release>());
+             py::call_guard<py::gil_scoped_release>(),
+             "Fit everything added; vehicle_x/y: its dead-reckoned position at the fix.");
 }

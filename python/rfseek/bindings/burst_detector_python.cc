@@ -26,7 +26,8 @@ void bind_burst_detector(py::module& m)
              py::arg("holdoff") = 1000,
              py::arg("average_len") = 256,
              py::arg("floor_block") = 512,
-             py::arg("floor_blocks") = 16)
+             py::arg("floor_blocks") = 16,
+             "A detector of bursts over a tracked noise floor (threshold in dB over it).")
         .def(
             "push",
             [](burst_detector& d,
@@ -41,9 +42,15 @@ void bind_burst_detector(py::module& m)
             py::arg("offset"),
             "Feed samples (first at absolute index offset); returns the burst starts "
             "found.")
-        .def("noise_floor", &burst_detector::noise_floor)
-        .def("threshold_db", &burst_detector::threshold_db)
+        .def("noise_floor",
+             &burst_detector::noise_floor,
+             "Current noise-floor estimate (mean power per sample; 0 before the first "
+             "blocks).")
+        .def("threshold_db",
+             &burst_detector::threshold_db,
+             "Detection level over the noise floor (dB).")
         .def("set_threshold_db",
              &burst_detector::set_threshold_db,
-             py::arg("threshold_db"));
+             py::arg("threshold_db"),
+             "Change the detection level (dB, > 0).");
 }

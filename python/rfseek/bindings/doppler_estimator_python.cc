@@ -35,25 +35,57 @@ void bind_doppler_estimator(py::module& m)
              py::arg("offset") = 0,
              py::arg("min_freq") = 0.0,
              py::arg("max_freq") = 0.0,
-             py::arg("threshold_db") = 2.0)
-        .def("window", &doppler_estimator::window)
-        .def("interpolator", &doppler_estimator::interpolator)
-        .def("alignment", &doppler_estimator::alignment)
-        .def("min_freq", &doppler_estimator::min_freq)
-        .def("max_freq", &doppler_estimator::max_freq)
-        .def("window_count", &doppler_estimator::window_count)
-        .def("invalid_count", &doppler_estimator::invalid_count)
-        .def("truncated_count", &doppler_estimator::truncated_count)
-        .def("set_window", &doppler_estimator::set_window, py::arg("window"))
+             py::arg("threshold_db") = 2.0,
+             "\\param samp_rate sample rate (Hz, > 0) \\param window_len N samples per "
+             "window (3 <= N <= fft_len) \\param fft_len N_FFT (>= 4) \\param window "
+             "\"rectangular\", \"hann\" or \"blackman_harris\" \\param interpolator "
+             "\"parabolic\" (paper eq. 3), \"newton\" (ML) or \"log_parabolic\" \\param "
+             "alignment \"tag\", \"periodic\" or \"energy\" \\param tag_key key of the "
+             "aligning tags (alignment \"tag\") \\param period samples between window "
+             "starts (alignment \"periodic\", >= window_len) \\param offset first window "
+             "start (alignment \"periodic\", >= 0) \\param min_freq, max_freq search "
+             "band in Hz; equal values search the whole band \\param threshold_db burst "
+             "detection level over the noise floor (alignment        \"energy\", > 0 dB)")
+        .def("window", &doppler_estimator::window, "The window's name.")
+        .def("interpolator",
+             &doppler_estimator::interpolator,
+             "The peak interpolator's name.")
+        .def("alignment",
+             &doppler_estimator::alignment,
+             "How windows are found: 'tag', 'periodic' or 'energy'.")
+        .def("min_freq",
+             &doppler_estimator::min_freq,
+             "Lower edge of the search band (Hz).")
+        .def("max_freq",
+             &doppler_estimator::max_freq,
+             "Upper edge of the search band (Hz).")
+        .def("window_count",
+             &doppler_estimator::window_count,
+             "Windows measured / of them invalid / of them cut short by the next tag.")
+        .def("invalid_count",
+             &doppler_estimator::invalid_count,
+             "Windows whose estimate was not valid.")
+        .def("truncated_count",
+             &doppler_estimator::truncated_count,
+             "Windows cut short by the end of the stream or a new burst.")
+        .def("set_window",
+             &doppler_estimator::set_window,
+             py::arg("window"),
+             "Change the window (GRC callback).")
         .def("set_interpolator",
              &doppler_estimator::set_interpolator,
-             py::arg("interpolator"))
-        .def("threshold_db", &doppler_estimator::threshold_db)
+             py::arg("interpolator"),
+             "Change the peak interpolator (GRC callback).")
+        .def("threshold_db",
+             &doppler_estimator::threshold_db,
+             "Burst detection level over the noise floor (dB, alignment 'energy').")
         .def("set_threshold_db",
              &doppler_estimator::set_threshold_db,
-             py::arg("threshold_db"))
+             py::arg("threshold_db"),
+             "Change the burst detection level (dB).")
         .def("set_band",
              &doppler_estimator::set_band,
              py::arg("min_freq"),
-             py::arg("max_freq"));
+             py::arg("max_freq"),
+             "Search only [min, max] Hz (GRC callback; equal values: the whole band).");
 }

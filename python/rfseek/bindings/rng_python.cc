@@ -19,12 +19,15 @@ void bind_rng(py::module& m)
         .def(py::init<std::uint64_t, std::uint64_t, std::uint64_t>(),
              py::arg("seed"),
              py::arg("stream") = 0,
-             py::arg("index") = 0)
+             py::arg("index") = 0,
+             "A counter-based generator for (seed, stream, index): the same triple gives "
+             "the same numbers on every platform.")
         .def("reseed",
              &rng::reseed,
              py::arg("seed"),
              py::arg("stream") = 0,
-             py::arg("index") = 0)
+             py::arg("index") = 0,
+             "Restart at (seed, stream, index).")
         .def("next", &rng::next, "Next raw 64-bit value.")
         .def("uniform", py::overload_cast<>(&rng::uniform), "Uniform in [0, 1).")
         .def("uniform",

@@ -26,8 +26,10 @@ void bind_scenario(py::module& m)
         "scenario (paper Table I + docs/design.md). Fields set to None are "
         "drawn from the seed. scenario(**fields) sets fields by name.");
     c.def(py::init([](const py::kwargs& kw) {
-        return rfseek_from_kwargs<scenario>(kw, "scenario");
-    }));
+              return rfseek_from_kwargs<scenario>(kw, "scenario");
+          }),
+          "A scenario with the reference defaults; keyword arguments set fields by name "
+          "(ValueError for an unknown one).");
 #define RW(NAME, DOC) c.def_readwrite(#NAME, &scenario::NAME, DOC)
     RW(initial_distance_m, "d: UAV to emitter at start (m)");
     RW(start_angle_rad, "alpha: UAV polar angle around the emitter (None: from seed)");
@@ -74,23 +76,50 @@ void bind_scenario(py::module& m)
     RW(seed, "seed of every random draw of the run");
 #undef RW
     c.def("validate", &scenario::validate, "Raise ValueError naming a bad field.")
-        .def_property_readonly("wavelength_m", &scenario::wavelength_m)
-        .def_property_readonly("max_doppler_hz", &scenario::max_doppler_hz)
-        .def_property_readonly("slot_samples", &scenario::slot_samples)
-        .def_property_readonly("window_duration_s", &scenario::window_duration_s)
-        .def_property_readonly("shortest_path_m", &scenario::shortest_path_m)
-        .def_property_readonly("effective_flight_cap_m",
-                               &scenario::effective_flight_cap_m)
-        .def_static("keys", &scenario::keys)
-        .def("set", &scenario::set, py::arg("key"), py::arg("value"))
-        .def("get", &scenario::get, py::arg("key"))
-        .def("to_json", &scenario::to_json)
+        .def_property_readonly(
+            "wavelength_m", &scenario::wavelength_m, "Derived quantities.")
+        .def_property_readonly("max_doppler_hz",
+                               &scenario::max_doppler_hz,
+                               "f_d,max = speed_mps * carrier_hz / c (Hz).")
+        .def_property_readonly(
+            "slot_samples", &scenario::slot_samples, "round(T_slot * fs)")
+        .def_property_readonly("window_duration_s",
+                               &scenario::window_duration_s,
+                               "window_len / samp_rate_hz (s).")
+        .def_property_readonly(
+            "shortest_path_m",
+            &scenario::shortest_path_m,
+            "initial_distance_m - success_radius_m: the straight line to d_v (m).")
+        .def_property_readonly(
+            "effective_flight_cap_m",
+            &scenario::effective_flight_cap_m,
+            "The flight cap in metres (flight_cap_m, default 4 (d - d_v)).")
+        .def_static("keys",
+                    &scenario::keys,
+                    "Names of the numeric fields settable by set() (CLI \"--set "
+                    "key=value\", GRC).")
+        .def("set",
+             &scenario::set,
+             py::arg("key"),
+             py::arg("value"),
+             "Set a field by name from text: numbers, \"true\"/\"false\" for add_noise, "
+             "\"none\"/\"random\" to unset an optional field. Throws "
+             "ValueError for an unknown key or unparsable value (validate() "
+             "checks ranges).")
+        .def("get",
+             &scenario::get,
+             py::arg("key"),
+             "Field value as text (\"none\" for an unset optional).")
+        .def("to_json", &scenario::to_json, "All fields as a JSON object (one line).")
         .def_static("presets", &scenario::presets, "Names of the study presets.")
         .def_static("preset_overrides",
                     &scenario::preset_overrides,
                     py::arg("name"),
                     "A preset's (key, value) overrides of the reference scenario.")
-        .def_static("preset_description", &scenario::preset_description, py::arg("name"))
+        .def_static("preset_description",
+                    &scenario::preset_description,
+                    py::arg("name"),
+                    "One line saying what the preset is.")
         .def_static(
             "preset",
             [](const std::string& name) {
@@ -100,8 +129,12 @@ void bind_scenario(py::module& m)
             },
             py::arg("name"),
             "The reference scenario with a preset applied.")
-        .def("apply_preset", &scenario::apply_preset, py::arg("name"))
-        .def("copy", [](const scenario& s) { return scenario(s); })
+        .def("apply_preset",
+             &scenario::apply_preset,
+             py::arg("name"),
+             "Apply a preset's overrides to this scenario (throws for an unknown name).")
+        .def(
+            "copy", [](const scenario& s) { return scenario(s); }, "An independent copy.")
         .def("__repr__",
              [](const scenario& s) { return "rfseek.scenario(" + s.to_json() + ")"; });
 }

@@ -70,8 +70,10 @@ void bind_seeker_config(py::module& m)
                                 "Strategy and constants of the seeker. "
                                 "seeker_config(**fields) sets fields by name.");
     c.def(py::init([](const py::kwargs& kw) {
-        return rfseek_from_kwargs<seeker_config>(kw, "seeker_config");
-    }));
+              return rfseek_from_kwargs<seeker_config>(kw, "seeker_config");
+          }),
+          "A configuration with the paper's constants; keyword arguments set fields by "
+          "name.");
 #define RW(NAME, DOC) c.def_readwrite(#NAME, &seeker_config::NAME, DOC)
     RW(strategy,
        "'paper', 'paper_no_circle', 'rss_baseline' or 'adaptive' (ours, not the "
@@ -163,29 +165,47 @@ void bind_seeker(py::module& m)
 
     py::class_<measurement>(
         m, "measurement", "One slot's measurement as the seeker sees it.")
-        .def(py::init<>())
-        .def_readwrite("slot", &measurement::slot)
-        .def_readwrite("time_s", &measurement::time_s)
-        .def_readwrite("freq_hz", &measurement::freq_hz)
-        .def_readwrite("snr_db", &measurement::snr_db)
-        .def_readwrite("power_db", &measurement::power_db)
-        .def_readwrite("valid", &measurement::valid)
-        .def_readwrite("has_heading", &measurement::has_heading)
-        .def_readwrite("heading_rad", &measurement::heading_rad);
+        .def(py::init<>(), "An empty measurement.")
+        .def_readwrite("slot", &measurement::slot, "Slot index.")
+        .def_readwrite("time_s", &measurement::time_s, "Time of the slot (s).")
+        .def_readwrite("freq_hz",
+                       &measurement::freq_hz,
+                       "Measured frequency (Hz): Doppler plus carrier offset.")
+        .def_readwrite("snr_db", &measurement::snr_db, "Estimated SNR (dB).")
+        .def_readwrite("power_db", &measurement::power_db, "Estimated tone power (dB).")
+        .def_readwrite("valid", &measurement::valid, "The estimate is usable.")
+        .def_readwrite("has_heading",
+                       &measurement::has_heading,
+                       "heading_rad holds the vehicle's heading for this slot.")
+        .def_readwrite(
+            "heading_rad", &measurement::heading_rad, "measured heading at the beacon");
 
     py::class_<command>(m, "command", "The seeker's answer to one measurement.")
-        .def(py::init<>())
-        .def_readonly("slot", &command::slot)
-        .def_readonly("heading_rad", &command::heading_rad)
-        .def_readonly("stage", &command::stage)
-        .def_readonly("theta_est_rad", &command::theta_est_rad)
-        .def_readonly("update", &command::update)
-        .def_readonly("holding", &command::holding)
-        .def_readonly("filtered_freq_hz", &command::filtered_freq_hz)
-        .def_readonly("accepted", &command::accepted)
+        .def(py::init<>(), "An empty command.")
+        .def_readonly("slot", &command::slot, "slot of the measurement answered")
+        .def_readonly("heading_rad", &command::heading_rad, "heading to fly from now on")
+        .def_readonly("stage",
+                      &command::stage,
+                      "1 (circle, acquisition), 2 (perturbations, probes), 3 (loiter)")
+        .def_readonly("theta_est_rad",
+                      &command::theta_est_rad,
+                      "current estimate of the direction to the emitter")
+        .def_readonly("update",
+                      &command::update,
+                      "a Stage-2 update (eq. 5) or the Stage-1 decision happened")
+        .def_readonly(
+            "holding", &command::holding, "holding course for lack of measurements")
+        .def_readonly("filtered_freq_hz",
+                      &command::filtered_freq_hz,
+                      "the eq. 4 output for this measurement")
+        .def_readonly("accepted", &command::accepted, "eq. 4 accepted this measurement")
         .def_readonly("status", &command::status, "0 seeking, 1 arrived, 2 located")
-        .def_readonly("done", &command::done)
-        .def_readonly("location", &command::location);
+        .def_readonly("done",
+                      &command::done,
+                      "self_arrival: the mission is over (located, or gave up after "
+                      "locate_max_orbits).")
+        .def_readonly(
+            "location", &command::location, "the latest fix (valid once located)");
 
     py::class_<seeker, std::unique_ptr<seeker>>(m, "seeker", "A seeking strategy.")
         .def(py::init(&seeker::make),

@@ -22,14 +22,23 @@ void bind_seeking_controller(py::module& m)
         m,
         "seeking_controller",
         "The seeker as a message block: 'meas', 'nav' in; 'cmd', 'telemetry' out.")
-        .def(py::init(&seeking_controller::make), py::arg("config"))
-        .def("config", &seeking_controller::config)
-        .def("stage", &seeking_controller::stage)
-        .def("theta_est", &seeking_controller::theta_est)
-        .def("updates", &seeking_controller::updates)
-        .def("meas_count", &seeking_controller::meas_count)
-        .def("invalid_count", &seeking_controller::invalid_count)
-        .def("malformed_count", &seeking_controller::malformed_count)
+        .def(
+            py::init(&seeking_controller::make),
+            py::arg("config"),
+            "\\param cfg strategy and constants (validated; bad fields raise ValueError)")
+        .def("config", &seeking_controller::config, "The seeker configuration it runs.")
+        .def("stage", &seeking_controller::stage, "The seeker's current stage.")
+        .def("theta_est",
+             &seeking_controller::theta_est,
+             "The seeker's current bearing estimate (rad).")
+        .def("updates", &seeking_controller::updates, "Heading updates applied so far.")
+        .def("meas_count", &seeking_controller::meas_count, "meas messages received.")
+        .def("invalid_count",
+             &seeking_controller::invalid_count,
+             "meas messages flagged invalid (ignored by the strategy).")
+        .def("malformed_count",
+             &seeking_controller::malformed_count,
+             "Messages dropped as malformed.")
         .def("status", &seeking_controller::status, "0 seeking, 1 arrived, 2 located")
         .def("location", &seeking_controller::location, "the latest fix")
         .def("done",

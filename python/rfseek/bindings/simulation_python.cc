@@ -69,70 +69,146 @@ void bind_simulation(py::module& m)
             py::arg("window") = "rectangular",
             py::arg("interpolator") = "parabolic",
             py::arg("min_freq_hz") = 0.0,
-            py::arg("max_freq_hz") = 0.0)
-        .def_readwrite("window", &estimator_config::window)
-        .def_readwrite("interpolator", &estimator_config::interpolator)
-        .def_readwrite("min_freq_hz", &estimator_config::min_freq_hz)
-        .def_readwrite("max_freq_hz", &estimator_config::max_freq_hz);
+            py::arg("max_freq_hz") = 0.0,
+            "How the frequency is measured in the loop: window, interpolator, search "
+            "band (Hz; equal edges: the whole band).")
+        .def_readwrite("window", &estimator_config::window, "The window's name.")
+        .def_readwrite("interpolator",
+                       &estimator_config::interpolator,
+                       "The peak interpolator's name.")
+        .def_readwrite("min_freq_hz",
+                       &estimator_config::min_freq_hz,
+                       "Lower edge of the search band (Hz).")
+        .def_readwrite("max_freq_hz",
+                       &estimator_config::max_freq_hz,
+                       "Upper edge of the search band (Hz).");
 
-    py::class_<run_summary>(m, "run_summary")
-        .def_readonly("strategy", &run_summary::strategy)
-        .def_readonly("seed", &run_summary::seed)
-        .def_readonly("distance_m", &run_summary::distance_m)
-        .def_readonly("shortest_path_m", &run_summary::shortest_path_m)
-        .def_readonly("ratio", &run_summary::ratio)
-        .def_readonly("straight_air_m", &run_summary::straight_air_m)
-        .def_readonly("straight_ratio", &run_summary::straight_ratio)
-        .def_readonly("time_s", &run_summary::time_s)
-        .def_readonly("success", &run_summary::success)
-        .def_readonly("slots", &run_summary::slots)
-        .def_readonly("has_stage1", &run_summary::has_stage1)
-        .def_readonly("stage1_heading_error_rad", &run_summary::stage1_heading_error_rad)
-        .def_readonly("updates", &run_summary::updates)
-        .def_readonly("self_arrival", &run_summary::self_arrival)
-        .def_readonly("overflight", &run_summary::overflight)
-        .def_readonly("overflight_distance_m", &run_summary::overflight_distance_m)
-        .def_readonly("declared", &run_summary::declared)
-        .def_readonly("arrival_time_s", &run_summary::arrival_time_s)
+    py::class_<run_summary>(m,
+                            "run_summary",
+                            "What one run achieved: distance, ratio, time, success, and "
+                            "with self_arrival the arrival and location figures.")
+        .def_readonly("strategy", &run_summary::strategy, "The strategy flown.")
+        .def_readonly("seed", &run_summary::seed, "The scenario seed.")
+        .def_readonly(
+            "distance_m", &run_summary::distance_m, "flown, Stage-1 circle included")
+        .def_readonly("shortest_path_m", &run_summary::shortest_path_m, "d - d_v")
+        .def_readonly("ratio", &run_summary::ratio, "distance_m / shortest_path_m")
+        .def_readonly(
+            "straight_air_m",
+            &run_summary::straight_air_m,
+            "Air distance of the straight ground line to d_v in the mean wind at the "
+            "start (world::straight_air_m; shortest_path_m in calm air).")
+        .def_readonly("straight_ratio",
+                      &run_summary::straight_ratio,
+                      "distance_m / straight_air_m: 1 for the straight ground track "
+                      "whatever the wind (ratio in calm air; 0 when the wind blows "
+                      "faster than the airspeed against it).")
+        .def_readonly(
+            "time_s", &run_summary::time_s, "Flight time to arrival or the cap (s).")
+        .def_readonly(
+            "success", &run_summary::success, "arrived within d_v before the flight cap")
+        .def_readonly("slots", &run_summary::slots, "Slots flown.")
+        .def_readonly("has_stage1",
+                      &run_summary::has_stage1,
+                      "Stage 1 decided a heading (paper's strategies).")
+        .def_readonly("stage1_heading_error_rad",
+                      &run_summary::stage1_heading_error_rad,
+                      "theta_0 minus the true bearing, at the decision")
+        .def_readonly("updates", &run_summary::updates, "Stage-2 updates applied")
+        .def_readonly("self_arrival",
+                      &run_summary::self_arrival,
+                      "Arrival was decided by the vehicle (scenario.self_arrival).")
+        .def_readonly(
+            "overflight",
+            &run_summary::overflight,
+            "The overflight (or encircling) signature was first seen (the loiter began).")
+        .def_readonly("overflight_distance_m",
+                      &run_summary::overflight_distance_m,
+                      "true horizontal distance then")
+        .def_readonly(
+            "declared",
+            &run_summary::declared,
+            "The vehicle declared its arrival (seeker_config::arrival_confirm_m: when a "
+            "location fit confirmed it; 0: at the overflight).")
+        .def_readonly("arrival_time_s",
+                      &run_summary::arrival_time_s,
+                      "When the vehicle declared its arrival (s).")
         .def_readonly("arrival_detect_distance_m",
-                      &run_summary::arrival_detect_distance_m)
-        .def_readonly("false_arrival", &run_summary::false_arrival)
-        .def_readonly("located", &run_summary::located)
-        .def_readonly("location_error_m", &run_summary::location_error_m)
-        .def_readonly("location_major_m", &run_summary::location_major_m)
-        .def_readonly("location_minor_m", &run_summary::location_minor_m)
-        .def_readonly("location_in_ellipse", &run_summary::location_in_ellipse)
-        .def_readonly("total_distance_m", &run_summary::total_distance_m);
+                      &run_summary::arrival_detect_distance_m,
+                      "true horizontal distance then")
+        .def_readonly(
+            "false_arrival", &run_summary::false_arrival, "declared more than 1 km away")
+        .def_readonly("located", &run_summary::located, "a location fix was published")
+        .def_readonly("location_error_m",
+                      &run_summary::location_error_m,
+                      "|estimated - true| emitter offset at the fix")
+        .def_readonly("location_major_m",
+                      &run_summary::location_major_m,
+                      "95 % ellipse semi-axes of the fix")
+        .def_readonly("location_minor_m",
+                      &run_summary::location_minor_m,
+                      "95 % ellipse semi-minor axis of the fix (m).")
+        .def_readonly("location_in_ellipse",
+                      &run_summary::location_in_ellipse,
+                      "the truth lies inside the 95 % ellipse")
+        .def_readonly("total_distance_m",
+                      &run_summary::total_distance_m,
+                      "flown until the run ended (loiter included)");
 
-    py::class_<slot_record>(m, "slot_record")
-        .def_readonly("slot", &slot_record::slot)
-        .def_readonly("time_s", &slot_record::time_s)
-        .def_readonly("x_m", &slot_record::x_m)
-        .def_readonly("y_m", &slot_record::y_m)
-        .def_readonly("heading_rad", &slot_record::heading_rad)
-        .def_readonly("measured_heading_rad", &slot_record::measured_heading_rad)
-        .def_readonly("distance_m", &slot_record::distance_m)
-        .def_readonly("distance_flown_m", &slot_record::distance_flown_m)
-        .def_readonly("cfo_hz", &slot_record::cfo_hz)
-        .def_readonly("doppler_hz", &slot_record::doppler_hz)
-        .def_readonly("true_snr_db", &slot_record::true_snr_db)
-        .def_readonly("freq_hz", &slot_record::freq_hz)
-        .def_readonly("snr_db", &slot_record::snr_db)
-        .def_readonly("power_db", &slot_record::power_db)
-        .def_readonly("valid", &slot_record::valid)
-        .def_readonly("stage", &slot_record::stage)
-        .def_readonly("theta_est_rad", &slot_record::theta_est_rad)
-        .def_readonly("cmd_heading_rad", &slot_record::cmd_heading_rad)
-        .def_readonly("update", &slot_record::update)
-        .def_readonly("status", &slot_record::status);
+    py::class_<slot_record>(
+        m, "slot_record", "Truth, measurement and decision of one slot.")
+        .def_readonly("slot", &slot_record::slot, "Slot index.")
+        .def_readonly(
+            "time_s", &slot_record::time_s, "Time at the start of the slot (s).")
+        .def_readonly("x_m", &slot_record::x_m, "UAV east position (m).")
+        .def_readonly("y_m", &slot_record::y_m, "UAV north position (m).")
+        .def_readonly(
+            "heading_rad", &slot_record::heading_rad, "true heading at the beacon")
+        .def_readonly("measured_heading_rad",
+                      &slot_record::measured_heading_rad,
+                      "what the seeker was told")
+        .def_readonly("distance_m", &slot_record::distance_m, "to the emitter")
+        .def_readonly("distance_flown_m",
+                      &slot_record::distance_flown_m,
+                      "Air distance flown so far (m).")
+        .def_readonly("cfo_hz", &slot_record::cfo_hz, "truth")
+        .def_readonly("doppler_hz", &slot_record::doppler_hz, "LOS Doppler (truth)")
+        .def_readonly(
+            "true_snr_db", &slot_record::true_snr_db, "instantaneous SNR (truth)")
+        .def_readonly("freq_hz", &slot_record::freq_hz, "measured")
+        .def_readonly("snr_db", &slot_record::snr_db, "estimated")
+        .def_readonly("power_db", &slot_record::power_db, "estimated tone power")
+        .def_readonly("valid", &slot_record::valid, "The measurement was valid.")
+        .def_readonly("stage", &slot_record::stage, "The seeker's stage.")
+        .def_readonly("theta_est_rad",
+                      &slot_record::theta_est_rad,
+                      "The seeker's bearing estimate (rad).")
+        .def_readonly("cmd_heading_rad",
+                      &slot_record::cmd_heading_rad,
+                      "The heading commanded for the next slot (rad).")
+        .def_readonly(
+            "update", &slot_record::update, "A Stage-2 update was applied in this slot.")
+        .def_readonly("status",
+                      &slot_record::status,
+                      "0 seeking, 1 arrived (loitering), 2 located (self_arrival)");
 
-    py::class_<run_result>(m, "run_result")
-        .def_readonly("summary", &run_result::summary)
-        .def_readonly("records", &run_result::records)
-        .def_readonly("scatterers", &run_result::scatterers)
-        .def_readonly("location", &run_result::location)
-        .def_readonly("location_vehicle_x_m", &run_result::location_vehicle_x_m)
-        .def_readonly("location_vehicle_y_m", &run_result::location_vehicle_y_m)
+    py::class_<run_result>(
+        m,
+        "run_result",
+        "A run: its summary, the slots' records, the scene and the first fix.")
+        .def_readonly("summary", &run_result::summary, "The run's run_summary.")
+        .def_readonly(
+            "records", &run_result::records, "Every slot's slot_record (when kept).")
+        .def_readonly("scatterers", &run_result::scatterers, "The scatterers of the run.")
+        .def_readonly("location",
+                      &run_result::location,
+                      "self_arrival: the first fix and where the vehicle truly was then.")
+        .def_readonly("location_vehicle_x_m",
+                      &run_result::location_vehicle_x_m,
+                      "True vehicle east position at the first fix (m).")
+        .def_readonly("location_vehicle_y_m",
+                      &run_result::location_vehicle_y_m,
+                      "True vehicle north position at the first fix (m).")
         .def("columns", &record_columns, "Per-slot records as a dict of numpy arrays.");
 
     py::class_<simulation>(

@@ -12,7 +12,9 @@
 
 namespace py = pybind11;
 
-void bind_arrival(py::module& m)
+namespace {
+
+void bind_overflight_config_class(py::module& m)
 {
     using namespace gr::rfseek;
     py::class_<overflight_config>(m, "overflight_config", "Overflight detector settings.")
@@ -55,7 +57,11 @@ void bind_arrival(py::module& m)
             &overflight_config::encircle_amplitude,
             "Encircling: detected also when, over drift_s with headings all round, the "
             "far-field Doppler amplitude stays below this x f_d,max (0: off).");
+}
 
+void bind_doppler_amplitude_class(py::module& m)
+{
+    using namespace gr::rfseek;
     py::class_<doppler_amplitude>(
         m,
         "doppler_amplitude",
@@ -78,7 +84,11 @@ void bind_arrival(py::module& m)
             &doppler_amplitude::amplitude,
             "The fitted amplitude (Hz); NaN with fewer than 8 measurements or headings "
             "that do not go all round (a gap of 120 deg or more).");
+}
 
+void bind_overflight_detector_class(py::module& m)
+{
+    using namespace gr::rfseek;
     py::class_<overflight_detector>(
         m,
         "overflight_detector",
@@ -117,7 +127,11 @@ void bind_arrival(py::module& m)
             &overflight_detector::encircled,
             "The detection came from the encircling signature, not an overflight.")
         .def("reset", &overflight_detector::reset, "Forget everything (a new approach).");
+}
 
+void bind_emitter_location_class(py::module& m)
+{
+    using namespace gr::rfseek;
     py::class_<emitter_location>(
         m, "emitter_location", "A location fix (docs/seeker.md).")
         .def(py::init<>(), "An empty location (invalid).")
@@ -163,7 +177,11 @@ void bind_arrival(py::module& m)
         .def_readonly("gust_knots",
                       &emitter_location::gust_knots,
                       "gust states per axis (0: constant wind)");
+}
 
+void bind_emitter_locator_class(py::module& m)
+{
+    using namespace gr::rfseek;
     py::class_<emitter_locator>(
         m, "emitter_locator", "The emitter from the Doppler along a dead-reckoned path.")
         .def(py::init<double, double, double, double, double, double>(),
@@ -198,4 +216,15 @@ void bind_arrival(py::module& m)
              py::arg("vehicle_y_m"),
              py::call_guard<py::gil_scoped_release>(),
              "Fit everything added; vehicle_x/y: its dead-reckoned position at the fix.");
+}
+
+} // namespace
+
+void bind_arrival(py::module& m)
+{
+    bind_overflight_config_class(m);
+    bind_doppler_amplitude_class(m);
+    bind_overflight_detector_class(m);
+    bind_emitter_location_class(m);
+    bind_emitter_locator_class(m);
 }

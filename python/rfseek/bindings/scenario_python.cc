@@ -14,6 +14,78 @@
 
 namespace py = pybind11;
 
+namespace {
+
+// The scenario's methods (its fields are bound in bind_scenario).
+void bind_scenario_methods(py::class_<gr::rfseek::scenario>& c)
+{
+    using gr::rfseek::scenario;
+    c.def("validate", &scenario::validate, "Raise ValueError naming a bad field.")
+        .def_property_readonly(
+            "wavelength_m", &scenario::wavelength_m, "lambda = c / carrier_hz (m).")
+        .def_property_readonly("max_doppler_hz",
+                               &scenario::max_doppler_hz,
+                               "f_d,max = speed_mps * carrier_hz / c (Hz).")
+        .def_property_readonly(
+            "slot_samples", &scenario::slot_samples, "round(T_slot * fs)")
+        .def_property_readonly("window_duration_s",
+                               &scenario::window_duration_s,
+                               "window_len / samp_rate_hz (s).")
+        .def_property_readonly(
+            "shortest_path_m",
+            &scenario::shortest_path_m,
+            "initial_distance_m - success_radius_m: the straight line to d_v (m).")
+        .def_property_readonly(
+            "effective_flight_cap_m",
+            &scenario::effective_flight_cap_m,
+            "The flight cap in metres (flight_cap_m, default 4 (d - d_v)).")
+        .def_static("keys",
+                    &scenario::keys,
+                    "Names of the numeric fields settable by set() (CLI \"--set "
+                    "key=value\", GRC).")
+        .def("set",
+             &scenario::set,
+             py::arg("key"),
+             py::arg("value"),
+             "Set a field by name from text: numbers, \"true\"/\"false\" for add_noise, "
+             "\"none\"/\"random\" to unset an optional field. Throws "
+             "ValueError for an unknown key or unparsable value (validate() "
+             "checks ranges).")
+        .def("get",
+             &scenario::get,
+             py::arg("key"),
+             "Field value as text (\"none\" for an unset optional).")
+        .def("to_json", &scenario::to_json, "All fields as a JSON object (one line).")
+        .def_static("presets", &scenario::presets, "Names of the study presets.")
+        .def_static("preset_overrides",
+                    &scenario::preset_overrides,
+                    py::arg("name"),
+                    "A preset's (key, value) overrides of the reference scenario.")
+        .def_static("preset_description",
+                    &scenario::preset_description,
+                    py::arg("name"),
+                    "One line saying what the preset is.")
+        .def_static(
+            "preset",
+            [](const std::string& name) {
+                scenario s;
+                s.apply_preset(name);
+                return s;
+            },
+            py::arg("name"),
+            "The reference scenario with a preset applied.")
+        .def("apply_preset",
+             &scenario::apply_preset,
+             py::arg("name"),
+             "Apply a preset's overrides to this scenario (throws for an unknown name).")
+        .def(
+            "copy", [](const scenario& s) { return scenario(s); }, "An independent copy.")
+        .def("__repr__",
+             [](const scenario& s) { return "rfseek.scenario(" + s.to_json() + ")"; });
+}
+
+} // namespace
+
 void bind_scenario(py::module& m)
 {
     using gr::rfseek::scenario;
@@ -75,66 +147,5 @@ void bind_scenario(py::module& m)
        "stays a metric");
     RW(seed, "seed of every random draw of the run");
 #undef RW
-    c.def("validate", &scenario::validate, "Raise ValueError naming a bad field.")
-        .def_property_readonly(
-            "wavelength_m", &scenario::wavelength_m, "Derived quantities.")
-        .def_property_readonly("max_doppler_hz",
-                               &scenario::max_doppler_hz,
-                               "f_d,max = speed_mps * carrier_hz / c (Hz).")
-        .def_property_readonly(
-            "slot_samples", &scenario::slot_samples, "round(T_slot * fs)")
-        .def_property_readonly("window_duration_s",
-                               &scenario::window_duration_s,
-                               "window_len / samp_rate_hz (s).")
-        .def_property_readonly(
-            "shortest_path_m",
-            &scenario::shortest_path_m,
-            "initial_distance_m - success_radius_m: the straight line to d_v (m).")
-        .def_property_readonly(
-            "effective_flight_cap_m",
-            &scenario::effective_flight_cap_m,
-            "The flight cap in metres (flight_cap_m, default 4 (d - d_v)).")
-        .def_static("keys",
-                    &scenario::keys,
-                    "Names of the numeric fields settable by set() (CLI \"--set "
-                    "key=value\", GRC).")
-        .def("set",
-             &scenario::set,
-             py::arg("key"),
-             py::arg("value"),
-             "Set a field by name from text: numbers, \"true\"/\"false\" for add_noise, "
-             "\"none\"/\"random\" to unset an optional field. Throws "
-             "ValueError for an unknown key or unparsable value (validate() "
-             "checks ranges).")
-        .def("get",
-             &scenario::get,
-             py::arg("key"),
-             "Field value as text (\"none\" for an unset optional).")
-        .def("to_json", &scenario::to_json, "All fields as a JSON object (one line).")
-        .def_static("presets", &scenario::presets, "Names of the study presets.")
-        .def_static("preset_overrides",
-                    &scenario::preset_overrides,
-                    py::arg("name"),
-                    "A preset's (key, value) overrides of the reference scenario.")
-        .def_static("preset_description",
-                    &scenario::preset_description,
-                    py::arg("name"),
-                    "One line saying what the preset is.")
-        .def_static(
-            "preset",
-            [](const std::string& name) {
-                scenario s;
-                s.apply_preset(name);
-                return s;
-            },
-            py::arg("name"),
-            "The reference scenario with a preset applied.")
-        .def("apply_preset",
-             &scenario::apply_preset,
-             py::arg("name"),
-             "Apply a preset's overrides to this scenario (throws for an unknown name).")
-        .def(
-            "copy", [](const scenario& s) { return scenario(s); }, "An independent copy.")
-        .def("__repr__",
-             [](const scenario& s) { return "rfseek.scenario(" + s.to_json() + ")"; });
+    bind_scenario_methods(c);
 }

@@ -54,7 +54,9 @@ py::dict record_columns(const gr::rfseek::run_result& r)
 
 } // namespace
 
-void bind_simulation(py::module& m)
+namespace {
+
+void bind_estimator_config_class(py::module& m)
 {
     using namespace gr::rfseek;
     py::class_<estimator_config>(
@@ -82,7 +84,11 @@ void bind_simulation(py::module& m)
         .def_readwrite("max_freq_hz",
                        &estimator_config::max_freq_hz,
                        "Upper edge of the search band (Hz).");
+}
 
+void bind_run_summary_class(py::module& m)
+{
+    using namespace gr::rfseek;
     py::class_<run_summary>(m,
                             "run_summary",
                             "What one run achieved: distance, ratio, time, success, and "
@@ -154,7 +160,11 @@ void bind_simulation(py::module& m)
         .def_readonly("total_distance_m",
                       &run_summary::total_distance_m,
                       "flown until the run ended (loiter included)");
+}
 
+void bind_slot_record_class(py::module& m)
+{
+    using namespace gr::rfseek;
     py::class_<slot_record>(
         m, "slot_record", "Truth, measurement and decision of one slot.")
         .def_readonly("slot", &slot_record::slot, "Slot index.")
@@ -191,7 +201,11 @@ void bind_simulation(py::module& m)
         .def_readonly("status",
                       &slot_record::status,
                       "0 seeking, 1 arrived (loitering), 2 located (self_arrival)");
+}
 
+void bind_run_result_class(py::module& m)
+{
+    using namespace gr::rfseek;
     py::class_<run_result>(
         m,
         "run_result",
@@ -210,7 +224,11 @@ void bind_simulation(py::module& m)
                       &run_result::location_vehicle_y_m,
                       "True vehicle north position at the first fix (m).")
         .def("columns", &record_columns, "Per-slot records as a dict of numpy arrays.");
+}
 
+void bind_simulation_class(py::module& m)
+{
+    using namespace gr::rfseek;
     py::class_<simulation>(
         m,
         "simulation",
@@ -235,4 +253,15 @@ void bind_simulation(py::module& m)
                     py::arg("strategy"),
                     "A seeker_config for the scenario: its speed, carrier, slot period, "
                     "turn rate and seed, the paper's constants otherwise.");
+}
+
+} // namespace
+
+void bind_simulation(py::module& m)
+{
+    bind_estimator_config_class(m);
+    bind_run_summary_class(m);
+    bind_slot_record_class(m);
+    bind_run_result_class(m);
+    bind_simulation_class(m);
 }

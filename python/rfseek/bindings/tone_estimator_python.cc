@@ -109,7 +109,8 @@ void bind_tone_estimator(py::module& m)
         .def_static(
             "interpolators",
             &tone_estimator::interpolators,
-            "The peak interpolator names (parabolic: the paper's eq. 3; log_parabolic; newton: maximum likelihood, at the Cramer-Rao bound).")
+            "The peak interpolator names (parabolic: the paper's eq. 3; log_parabolic; "
+            "newton: maximum likelihood, at the Cramer-Rao bound).")
         .def_static("crb_std_hz",
                     &tone_estimator::crb_std_hz,
                     py::arg("snr_linear"),

@@ -14,121 +14,14 @@
 
 namespace py = pybind11;
 
-void bind_world(py::module& m)
+namespace {
+
+// The world's methods (its state's properties are bound in bind_world).
+void bind_world_methods(py::class_<gr::rfseek::world>& w)
 {
     using namespace gr::rfseek;
-    py::class_<scatterer>(m, "scatterer", "Point scatterer: position and Gamma_i.")
-        .def_readonly("x_m", &scatterer::x_m, "East position (m).")
-        .def_readonly("y_m", &scatterer::y_m, "North position (m).")
-        .def_readonly("gamma", &scatterer::gamma, "Reflection coefficient.");
-    py::class_<path_state>(m, "path_state", "One path at the UAV (LOS first).")
-        .def_readonly("amplitude",
-                      &path_state::amplitude,
-                      "complex amplitude of the received path (sqrt W)")
-        .def_readonly("doppler_hz",
-                      &path_state::doppler_hz,
-                      "+f_d,max cos(heading - direction to source point)")
-        .def_readonly("length_m", &path_state::length_m, "emitter -> (scatterer ->) UAV");
-
-    py::class_<world>(
-        m, "world", "The simulated physics of one run, slot by slot (paper eq. 1-2).")
-        .def(
-            py::init<const scenario&>(),
-            py::arg("scenario"),
-            "Validates the scenario and draws the geometry, start and CFO from its seed.")
-        .def_property_readonly("config", &world::config, "The scenario it simulates.")
-        .def_property_readonly("scatterers",
-                               &world::scatterers,
-                               "The scatterers' positions and reflection coefficients.")
-        .def_property_readonly(
-            "slot", &world::slot, "Current slot index (state at its start).")
-        .def_property_readonly(
-            "time_s", &world::time_s, "Time at the start of the current slot (s).")
-        .def_property_readonly(
-            "x_m", &world::x_m, "UAV east position (m; emitter at the origin).")
-        .def_property_readonly(
-            "y_m", &world::y_m, "UAV north position (m; emitter at the origin).")
-        .def_property_readonly("heading_rad",
-                               &world::heading_rad,
-                               "True air heading flown (rad, CCW from east).")
-        .def_property_readonly(
-            "measured_heading_rad",
-            &world::measured_heading_rad,
-            "Heading the UAV's sensors report for this slot: the true heading minus the "
-            "compass error it flies with, plus sigma_phi noise.")
-        .def_property_readonly(
-            "distance_m",
-            &world::distance_m,
-            "Horizontal distance to the emitter (what d_v is judged on).")
-        .def_property_readonly("distance_flown_m",
-                               &world::distance_flown_m,
-                               "Distance flown through the air (what the battery pays).")
-        .def_property_readonly(
-            "straight_air_m",
-            &world::straight_air_m,
-            "What the straight ground line costs: the air distance a vehicle pays flying "
-            "the straight ground track from the start to d_v, crabbed into the mean wind "
-            "at the start (d - d_v in calm air; infinity when that wind blows it back).")
-        .def_property_readonly("wind_east_mps",
-                               &world::wind_east_mps,
-                               "The mean wind now (without gusts), m/s.")
-        .def_property_readonly("wind_north_mps",
-                               &world::wind_north_mps,
-                               "The mean wind now, north component (m/s, without gusts).")
-        .def_property_readonly("bearing_to_emitter_rad",
-                               &world::bearing_to_emitter_rad,
-                               "Bearing from the UAV toward the emitter.")
-        .def_property_readonly(
-            "cfo_hz",
-            &world::cfo_hz,
-            "Carrier offset f_o at the start of this slot, and its linear drift rate a.")
-        .def_property_readonly("cfo_drift_hz_per_s",
-                               &world::cfo_drift_hz_per_s,
-                               "The carrier offset's linear drift rate (Hz/s).")
-        .def_property_readonly("los_doppler_hz",
-                               &world::los_doppler_hz,
-                               "Doppler of the line-of-sight path (+ when approaching).")
-        .def_property_readonly(
-            "slant_range_m",
-            &world::slant_range_m,
-            "Straight-line (3-D) distance to the emitter, altitude included.")
-        .def_property_readonly("ground_vx_mps",
-                               &world::ground_vx_mps,
-                               "Velocity over the ground (air velocity + wind), m/s.")
-        .def_property_readonly("ground_vy_mps",
-                               &world::ground_vy_mps,
-                               "Velocity over the ground, north component (m/s).")
-        .def_property_readonly(
-            "compass_error_rad",
-            &world::compass_error_rad,
-            "Compass error of the heading flown in this slot (flown - commanded).")
-        .def_property_readonly("amplitude_scale",
-                               &world::amplitude_scale,
-                               "Signal amplitude scale A (sqrt W * m) set from snr_db at "
-                               "the initial distance.")
-        .def_property_readonly(
-            "noise_power", &world::noise_power, "Noise power per sample (W).")
-        .def_property_readonly(
-            "arrived",
-            &world::arrived,
-            "Within d_v of the emitter (horizontal). Ends the run unless self_arrival.")
-        .def_property_readonly(
-            "capped", &world::capped, "The flight cap was reached (ends the run).")
-        .def_property_readonly("reached",
-                               &world::reached,
-                               "Has been within d_v at some slot (the same as arrived() "
-                               "without self_arrival).")
-        .def_property_readonly(
-            "reached_flown_m",
-            &world::reached_flown_m,
-            "Distance flown when d_v was first reached (0 if not reached).")
-        .def_property_readonly(
-            "ended",
-            &world::ended,
-            "self_arrival: the vehicle declared the run over (end_run()).")
-        .def("end_run",
-             &world::end_run,
-             "End the run now (the vehicle declared it is done).")
+    w.def(
+         "end_run", &world::end_run, "End the run now (the vehicle declared it is done).")
         .def_property_readonly("finished",
                                &world::finished,
                                "The run is over: arrived (without self_arrival), capped, "
@@ -177,4 +70,140 @@ void bind_world(py::module& m)
              "Change the turn-rate limit from now on (rad/s; 0: instantaneous).")
         .def_static(
             "wrap", &world::wrap, py::arg("angle"), "Wrap an angle to (-pi, pi].");
+}
+
+} // namespace
+
+namespace {
+
+// The scene: scatterers and the paths at the UAV.
+void bind_scene_classes(py::module& m)
+{
+    using namespace gr::rfseek;
+    py::class_<scatterer>(m, "scatterer", "Point scatterer: position and Gamma_i.")
+        .def_readonly("x_m", &scatterer::x_m, "East position (m).")
+        .def_readonly("y_m", &scatterer::y_m, "North position (m).")
+        .def_readonly("gamma", &scatterer::gamma, "Reflection coefficient.");
+    py::class_<path_state>(m, "path_state", "One path at the UAV (LOS first).")
+        .def_readonly("amplitude",
+                      &path_state::amplitude,
+                      "complex amplitude of the received path (sqrt W)")
+        .def_readonly("doppler_hz",
+                      &path_state::doppler_hz,
+                      "+f_d,max cos(heading - direction to source point)")
+        .def_readonly("length_m", &path_state::length_m, "emitter -> (scatterer ->) UAV");
+}
+
+} // namespace
+
+void bind_world(py::module& m)
+{
+    using namespace gr::rfseek;
+    bind_scene_classes(m);
+    auto w =
+        py::class_<world>(
+            m, "world", "The simulated physics of one run, slot by slot (paper eq. 1-2).")
+            .def(py::init<const scenario&>(),
+                 py::arg("scenario"),
+                 "Validates the scenario and draws the geometry, start and CFO from its "
+                 "seed.")
+            .def_property_readonly("config", &world::config, "The scenario it simulates.")
+            .def_property_readonly(
+                "scatterers",
+                &world::scatterers,
+                "The scatterers' positions and reflection coefficients.")
+            .def_property_readonly(
+                "slot", &world::slot, "Current slot index (state at its start).")
+            .def_property_readonly(
+                "time_s", &world::time_s, "Time at the start of the current slot (s).")
+            .def_property_readonly(
+                "x_m", &world::x_m, "UAV east position (m; emitter at the origin).")
+            .def_property_readonly(
+                "y_m", &world::y_m, "UAV north position (m; emitter at the origin).")
+            .def_property_readonly("heading_rad",
+                                   &world::heading_rad,
+                                   "True air heading flown (rad, CCW from east).")
+            .def_property_readonly("measured_heading_rad",
+                                   &world::measured_heading_rad,
+                                   "Heading the UAV's sensors report for this slot: the "
+                                   "true heading minus the "
+                                   "compass error it flies with, plus sigma_phi noise.")
+            .def_property_readonly(
+                "distance_m",
+                &world::distance_m,
+                "Horizontal distance to the emitter (what d_v is judged on).")
+            .def_property_readonly(
+                "distance_flown_m",
+                &world::distance_flown_m,
+                "Distance flown through the air (what the battery pays).")
+            .def_property_readonly("straight_air_m",
+                                   &world::straight_air_m,
+                                   "What the straight ground line costs: the air "
+                                   "distance a vehicle pays flying "
+                                   "the straight ground track from the start to d_v, "
+                                   "crabbed into the mean wind "
+                                   "at the start (d - d_v in calm air; infinity when "
+                                   "that wind blows it back).")
+            .def_property_readonly("wind_east_mps",
+                                   &world::wind_east_mps,
+                                   "The mean wind now (without gusts), m/s.")
+            .def_property_readonly(
+                "wind_north_mps",
+                &world::wind_north_mps,
+                "The mean wind now, north component (m/s, without gusts).")
+            .def_property_readonly("bearing_to_emitter_rad",
+                                   &world::bearing_to_emitter_rad,
+                                   "Bearing from the UAV toward the emitter.")
+            .def_property_readonly("cfo_hz",
+                                   &world::cfo_hz,
+                                   "Carrier offset f_o at the start of this slot, and "
+                                   "its linear drift rate a.")
+            .def_property_readonly("cfo_drift_hz_per_s",
+                                   &world::cfo_drift_hz_per_s,
+                                   "The carrier offset's linear drift rate (Hz/s).")
+            .def_property_readonly(
+                "los_doppler_hz",
+                &world::los_doppler_hz,
+                "Doppler of the line-of-sight path (+ when approaching).")
+            .def_property_readonly(
+                "slant_range_m",
+                &world::slant_range_m,
+                "Straight-line (3-D) distance to the emitter, altitude included.")
+            .def_property_readonly("ground_vx_mps",
+                                   &world::ground_vx_mps,
+                                   "Velocity over the ground (air velocity + wind), m/s.")
+            .def_property_readonly("ground_vy_mps",
+                                   &world::ground_vy_mps,
+                                   "Velocity over the ground, north component (m/s).")
+            .def_property_readonly(
+                "compass_error_rad",
+                &world::compass_error_rad,
+                "Compass error of the heading flown in this slot (flown - commanded).")
+            .def_property_readonly(
+                "amplitude_scale",
+                &world::amplitude_scale,
+                "Signal amplitude scale A (sqrt W * m) set from snr_db at "
+                "the initial distance.")
+            .def_property_readonly(
+                "noise_power", &world::noise_power, "Noise power per sample (W).")
+            .def_property_readonly("arrived",
+                                   &world::arrived,
+                                   "Within d_v of the emitter (horizontal). Ends the run "
+                                   "unless self_arrival.")
+            .def_property_readonly(
+                "capped", &world::capped, "The flight cap was reached (ends the run).")
+            .def_property_readonly(
+                "reached",
+                &world::reached,
+                "Has been within d_v at some slot (the same as arrived() "
+                "without self_arrival).")
+            .def_property_readonly(
+                "reached_flown_m",
+                &world::reached_flown_m,
+                "Distance flown when d_v was first reached (0 if not reached).")
+            .def_property_readonly(
+                "ended",
+                &world::ended,
+                "self_arrival: the vehicle declared the run over (end_run()).");
+    bind_world_methods(w);
 }

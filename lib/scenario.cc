@@ -7,6 +7,7 @@
  */
 
 #include <gr-rfseek/scenario.h>
+#include <nlohmann/json.hpp>
 #include <cerrno>
 #include <charconv>
 #include <cmath>
@@ -308,18 +309,30 @@ std::string scenario::get(const std::string& key) const
 
 std::string scenario::to_json() const
 {
-    std::ostringstream os;
-    os << "{";
-    bool first = true;
+    nlohmann::ordered_json j = nlohmann::ordered_json::object();
     for (const auto& f : fields()) {
-        std::string v = get(f.name);
-        if (f.k == kind::optional_real && v == "none")
-            v = "null";
-        os << (first ? "" : ", ") << "\"" << f.name << "\": " << v;
-        first = false;
+        void* p = f.ptr(const_cast<scenario&>(*this));
+        switch (f.k) {
+        case kind::real:
+            j[f.name] = *static_cast<double*>(p);
+            break;
+        case kind::integer:
+            j[f.name] = *static_cast<int*>(p);
+            break;
+        case kind::unsigned64:
+            j[f.name] = *static_cast<std::uint64_t*>(p);
+            break;
+        case kind::boolean:
+            j[f.name] = *static_cast<bool*>(p);
+            break;
+        case kind::optional_real: {
+            const auto& o = *static_cast<std::optional<double>*>(p);
+            j[f.name] = o ? nlohmann::ordered_json(*o) : nlohmann::ordered_json(nullptr);
+            break;
+        }
+        }
     }
-    os << "}";
-    return os.str();
+    return j.dump();
 }
 
 namespace {

@@ -27,6 +27,15 @@
 #include <mutex>
 #include <stdexcept>
 
+// How the FFT is planned (CMake RFSEEK_FFT_PLANNER): FFTW_MEASURE times the candidate
+// algorithms and keeps the fastest (the same one on a given machine, as a rule);
+// FFTW_ESTIMATE chooses without timing, so every process on every machine with the same
+// FFTW computes the same floats (the sanitizer builds use it: timings mean nothing
+// there).
+#ifndef RFSEEK_FFTW_PLANNER
+#define RFSEEK_FFTW_PLANNER FFTW_MEASURE
+#endif
+
 namespace gr {
 namespace rfseek {
 
@@ -119,7 +128,7 @@ struct tone_estimator::impl {
             out = fftwf_alloc_complex(nfft);
             if (!in || !out)
                 throw std::bad_alloc();
-            plan = fftwf_plan_dft_1d(nfft, in, out, FFTW_FORWARD, FFTW_MEASURE);
+            plan = fftwf_plan_dft_1d(nfft, in, out, FFTW_FORWARD, RFSEEK_FFTW_PLANNER);
         }
         if (!plan)
             throw std::runtime_error("tone_estimator: FFTW could not plan the FFT");

@@ -221,6 +221,9 @@ double fftw_floor_us(int n)
     fftwf_destroy_plan(p);
     fftwf_free(in);
     fftwf_free(out);
+    // The estimators plan on their own, as in any other process (a Dask worker, Python):
+    // this plan's wisdom must not choose their algorithm.
+    fftwf_forget_wisdom();
     return us;
 }
 

@@ -30,8 +30,7 @@
 // How the FFT is planned (CMake RFSEEK_FFT_PLANNER): FFTW_MEASURE times the candidate
 // algorithms and keeps the fastest (the same one on a given machine, as a rule);
 // FFTW_ESTIMATE chooses without timing, so every process on every machine with the same
-// FFTW computes the same floats (the sanitizer builds use it: timings mean nothing
-// there).
+// FFTW computes the same floats.
 #ifndef RFSEEK_FFTW_PLANNER
 #define RFSEEK_FFTW_PLANNER FFTW_MEASURE
 #endif

@@ -171,10 +171,9 @@ int dask_backend::run(std::vector<row>& rows, const row_callback& finished)
         } else {
             std::string msg;
             std::getline(ss, msg);
-            const auto a = msg.find_first_not_of(" \t\r\n\"");
-            const auto b = msg.find_last_not_of(" \t\r\n\"");
-            r.error =
-                a == std::string::npos ? "failed" : one_line(msg.substr(a, b - a + 1));
+            r.error = one_line(trim(msg));
+            if (r.error.empty())
+                r.error = "failed";
             r.done = true;
         }
         finished(r);

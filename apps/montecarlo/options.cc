@@ -5,6 +5,7 @@
  */
 
 #include "options.h"
+#include "rows.h"
 #include <CLI/CLI.hpp>
 #include <gr-rfseek/scenario.h>
 #include <gr-rfseek/seeker.h>
@@ -29,13 +30,6 @@ const char* DESCRIPTION =
     "distance flown to reach the success radius, per strategy, on the same seeds. Run i "
     "uses scenario seed S + i; rows do not depend on the thread count nor on the "
     "backend.";
-
-std::string trim(std::string s)
-{
-    const auto a = s.find_first_not_of(" \t\r\n\"");
-    const auto b = s.find_last_not_of(" \t\r\n\"");
-    return a == std::string::npos ? "" : s.substr(a, b - a + 1);
-}
 
 std::vector<std::string> split(const std::string& s, char sep)
 {

@@ -32,6 +32,13 @@ double printed(double v)
     return std::isfinite(v) ? std::strtod(format_number(v).c_str(), nullptr) : v;
 }
 
+std::string trim(const std::string& s)
+{
+    const auto a = s.find_first_not_of(" \t\r\n\"");
+    const auto b = s.find_last_not_of(" \t\r\n\"");
+    return a == std::string::npos ? "" : s.substr(a, b - a + 1);
+}
+
 std::string one_line(std::string s)
 {
     for (char& c : s)

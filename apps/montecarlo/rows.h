@@ -42,6 +42,8 @@ struct row {
 std::string format_number(double v);
 //! v rounded as format_number prints it.
 double printed(double v);
+//! s without surrounding blanks and quotes.
+std::string trim(const std::string& s);
 //! Text on one CSV cell: no line breaks, commas or quotes.
 std::string one_line(std::string s);
 //! The row's columns from a run's summary (rounded as printed); marks it done.

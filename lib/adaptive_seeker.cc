@@ -50,6 +50,12 @@ constexpr int ACQ_HEADINGS = 6;               // twice round
 constexpr int ACQ_ROUNDS = 4;                 // rounds whose samples a retry keeps
 constexpr int ACQ_MIN_SAMPLES = 8;            // accepted samples for a 4-term fit
 constexpr double ACQ_MAX_STD = 0.25;          // rad (14 deg): the fit's bearing std
+// A turn-limited acquisition ends early once the arc flown holds a sure fit:
+constexpr double ARC_MIN = 2.356194490192345;   // rad (135 deg) of heading flown
+constexpr double ARC_DRIFT = 5.235987755982988; // rad (300 deg): fit the drift from here
+constexpr double ARC_MAX_STD = 0.07; //           // rad (4 deg): the fit's bearing std
+constexpr double ARC_AMP_TOL = 0.25; // |A fitted / f_d,max - 1|
+constexpr int TURN_MAX_SEGMENTS = 4; // probe segments up to 4 x adaptive_track_slots
 
 class adaptive_seeker : public seeker
 {
@@ -58,8 +64,12 @@ public:
         : d_cfg(cfg),
           d_filter(make_outlier_filter(cfg)),
           d_track(make_ground_track(cfg)),
-          d_amp(cfg.max_doppler_hz())
+          d_amp(cfg.max_doppler_hz()),
+          d_lim(turn_limits_of(cfg)),
+          d_plan_turns(d_lim.rolls()),
+          d_turn(d_lim, 0.0)
     {
+        d_delta_max = turn_delta_max();
         d_delta = cfg.adaptive_delta_max_rad;
     }
 
@@ -81,6 +91,7 @@ public:
                 has_heading ? m.heading_rad : d_cfg.initial_heading_rad.value_or(0.0);
             d_theta = world::wrap(d_cfg.initial_heading_rad.value_or(d_model));
             d_last_cmd = d_model;
+            d_turn.set_heading(d_model);
             start_acquisition();
         } else if (m.slot > d_last_slot + 1) {
             d_missing += static_cast<int>(
@@ -103,6 +114,9 @@ public:
             if (r.accepted && d_tag_cycle == d_cycle)
                 d_samples.push_back(doppler_sample{ psi, m.time_s, m.freq_hz });
         }
+        if (d_acquiring && d_tag_cycle == d_cycle)
+            d_arc += std::abs(world::wrap(psi - d_arc_last));
+        d_arc_last = psi;
 
         d_missing = valid ? 0 : d_missing + 1;
         if (d_missing >= d_cfg.hold_after_missing) {
@@ -118,7 +132,11 @@ public:
             d_acquiring ? start_acquisition() : start_cycle();
         }
 
-        if (d_pos >= static_cast<int>(d_plan.size())) {
+        if (d_acquiring && d_plan_turns && d_arc >= ARC_MIN && d_arc < ARC_DRIFT &&
+            finish_acquisition(true)) {
+            c.update = true; // the arc flown so far already holds a sure bearing
+            start_cycle();
+        } else if (d_pos >= static_cast<int>(d_plan.size())) {
             const bool was_acquiring = d_acquiring;
             c.update = d_acquiring ? finish_acquisition() : finish_cycle();
             if (!d_acquiring)
@@ -135,12 +153,18 @@ private:
     {
         d_tag_cycle = tag;
         d_last_cmd = world::wrap(heading);
-        // The vehicle's heading at the next beacon (turn-rate model).
-        const double rate = d_cfg.turn_rate_rad_per_s * d_cfg.slot_period_s;
-        const double turn = world::wrap(d_last_cmd - d_model);
-        d_turning = rate > 0.0 && std::abs(turn) > rate;
-        d_model =
-            world::wrap(d_turning ? d_model + std::copysign(rate, turn) : d_last_cmd);
+        // The vehicle's heading at the next beacon (the turn model the world flies).
+        if (d_lim.rolls()) {
+            d_turn.step(d_last_cmd, d_cfg.slot_period_s);
+            d_turning = d_turn.turning();
+            d_model = d_turn.heading_rad();
+        } else {
+            const double rate = d_lim.max_rate() * d_cfg.slot_period_s;
+            const double turn = world::wrap(d_last_cmd - d_model);
+            d_turning = rate > 0.0 && std::abs(turn) > rate;
+            d_model =
+                world::wrap(d_turning ? d_model + std::copysign(rate, turn) : d_last_cmd);
+        }
         c.heading_rad = d_last_cmd;
         c.stage = stage();
         c.theta_est_rad = d_theta;
@@ -189,7 +213,9 @@ private:
             d_acq_origin = d_model;
         }
         d_acq_start = retry ? d_acq_origin : d_model;
-        const double rate = d_cfg.turn_rate_rad_per_s * d_cfg.slot_period_s;
+        d_arc = 0.0;
+        d_arc_last = d_model;
+        const double rate = d_lim.max_rate() * d_cfg.slot_period_s;
         if (rate > 0.0 && rate < ACQ_STEP) {
             const int n = static_cast<int>(std::ceil(2.0 * M_PI / rate));
             for (int i = 1; i <= n; ++i)
@@ -203,14 +229,20 @@ private:
         }
     }
 
-    bool finish_acquisition()
+    // arc: the turn-limited acquisition's early end (an arc short of the full turn, no
+    // drift term below ARC_DRIFT): only a sure fit ends it, anything else turns on.
+    bool finish_acquisition(bool arc = false)
     {
-        const doppler_fit_result r = fit_doppler_full(d_samples, d_cfg.adaptive_drift);
+        const doppler_fit_result r =
+            fit_doppler_full(d_samples, d_cfg.adaptive_drift && !arc);
         // A plausible fit: enough samples, the amplitude is the known f_d,max within a
         // third and the bearing is known to within ACQ_MAX_STD.
         if (!r.ok || r.used < ACQ_MIN_SAMPLES || r.amplitude_hz < 0.67 * d_amp ||
             r.amplitude_hz > 1.5 * d_amp || !(r.bearing_std_rad < ACQ_MAX_STD))
             return false; // acquire again
+        if (arc && (std::abs(r.amplitude_hz / d_amp - 1.0) > ARC_AMP_TOL ||
+                    !(r.bearing_std_rad < ARC_MAX_STD)))
+            return false; // not sure yet: turn on
         d_theta = world::wrap(r.bearing_rad);
         if (d_cfg.adaptive_ground_track) // the bearing goes on: one more measurement
             d_crab = d_track.update(mean_time(), d_theta, r.bearing_std_rad);
@@ -218,7 +250,9 @@ private:
         d_cfo = r.offset_hz;
         d_cfo_time = mean_time();
         d_drift = r.drift_hz_per_s;
-        d_err = d_cfg.adaptive_delta_max_rad;
+        // The first probes: as wide as delta_max, or (a turn-limited airframe) as wide as
+        // the fit's own uncertainty says.
+        d_err = d_plan_turns ? 2.0 * r.bearing_std_rad : d_cfg.adaptive_delta_max_rad;
         d_acquiring = false;
         ++d_updates;
         return true;
@@ -237,7 +271,39 @@ private:
         const double optimum = std::pow(g / (2.0 - g), 0.25) * std::sqrt(noise);
         return std::clamp(std::max(optimum, std::abs(d_err)),
                           d_cfg.adaptive_delta_min_rad,
-                          d_cfg.adaptive_delta_max_rad);
+                          d_delta_max);
+    }
+
+    // delta_max, or less where slow turns would stretch a probe segment beyond
+    // TURN_MAX_SEGMENTS x adaptive_track_slots (the largest delta whose reversals fit).
+    double turn_delta_max() const
+    {
+        double lo = d_cfg.adaptive_delta_min_rad, hi = d_cfg.adaptive_delta_max_rad;
+        const int cap = TURN_MAX_SEGMENTS * d_cfg.adaptive_track_slots;
+        if (!d_plan_turns || segment_slots(hi) <= cap)
+            return hi;
+        if (segment_slots(lo) > cap)
+            return lo;
+        for (int i = 0; i < 40; ++i) {
+            const double mid = 0.5 * (lo + hi);
+            (segment_slots(mid) <= cap ? lo : hi) = mid;
+        }
+        return lo;
+    }
+
+    // Slots per probe segment: adaptive_track_slots, or more where the airframe's turns
+    // are slow, so that the cycle's turns (onto its first probe, first_turn rad away,
+    // then two reversals of 2 delta) take at most adaptive_turn_share of its 4 segments.
+    int segment_slots(double delta, double first_turn = 0.0) const
+    {
+        const int m = d_cfg.adaptive_track_slots;
+        if (!d_plan_turns)
+            return m;
+        const double turn_s =
+            d_lim.change_time_s(first_turn) + 2.0 * d_lim.change_time_s(2.0 * delta);
+        const double need =
+            turn_s / (4.0 * d_cfg.adaptive_turn_share * d_cfg.slot_period_s);
+        return std::max(m, static_cast<int>(std::ceil(need - 1e-9)));
     }
 
     void start_cycle()
@@ -245,8 +311,9 @@ private:
         d_acquiring = false;
         new_plan();
         d_delta = choose_delta();
-        const int m = d_cfg.adaptive_track_slots;
         d_centre = d_theta + d_crab;
+        const int m =
+            segment_slots(d_delta, std::abs(world::wrap(d_centre + d_delta - d_model)));
         for (double s : { 1.0, -1.0, -1.0, 1.0 })
             for (int i = 0; i < m; ++i)
                 d_plan.push_back(d_centre + s * d_delta);
@@ -323,6 +390,13 @@ private:
     double d_last_bearing = 0.0, d_last_delta = 0.0, d_scatter2 = 0.0, d_scatter = 0.0;
     double d_centre = 0.0; // the heading the probes of this cycle are flown around
     const double d_amp;    // f_d,max
+    const turn_limits d_lim;
+    // Turns planned for the airframe (arc acquisition, probe segments and delta sized
+    // for the reversals): coordinated turns (bank and roll limits).
+    const bool d_plan_turns;
+    coordinated_turn d_turn; // the heading model with rolls (d_model otherwise)
+    double d_arc = 0.0, d_arc_last = 0.0; // heading flown in this acquisition
+    double d_delta_max = 0.0;             // delta_max within the airframe's turns
     bool d_started = false, d_acquiring = true, d_hold = false, d_turning = false;
     double d_theta = 0.0, d_model = 0.0, d_last_cmd = 0.0, d_hold_heading = 0.0;
     double d_acq_start = 0.0, d_acq_origin = 0.0, d_delta = 0.0, d_err = 0.0;

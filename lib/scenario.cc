@@ -114,6 +114,8 @@ const std::vector<field>& fields()
         RFSEEK_FIELD(speed_mps, kind::real),
         RFSEEK_FIELD(heading_noise_rad, kind::real),
         RFSEEK_FIELD(turn_rate_rad_per_s, kind::real),
+        RFSEEK_FIELD(bank_limit_rad, kind::real),
+        RFSEEK_FIELD(roll_rate_rad_per_s, kind::real),
         RFSEEK_FIELD(altitude_m, kind::real),
         RFSEEK_FIELD(wind_speed_mps, kind::real),
         RFSEEK_FIELD(wind_to_rad, kind::optional_real),
@@ -208,6 +210,12 @@ void scenario::validate() const
         require_range("cfo_drift_hz_per_s", *cfo_drift_hz_per_s, -1.0e4, 1.0e4);
     require_range("heading_noise_rad", heading_noise_rad, 0.0, M_PI);
     require_nonneg("turn_rate_rad_per_s", turn_rate_rad_per_s);
+    require_range("bank_limit_rad", bank_limit_rad, 0.0, 1.3962634015954636); // 80 deg
+    require_range("roll_rate_rad_per_s", roll_rate_rad_per_s, 0.0, 20.0);
+    if (roll_rate_rad_per_s > 0.0 && bank_limit_rad == 0.0)
+        bad("roll_rate_rad_per_s",
+            roll_rate_rad_per_s,
+            "0 unless bank_limit_rad > 0 (a roll-rate limit needs a bank limit)");
     require_range("altitude_m", altitude_m, 0.0, 10000.0);
     require_range("wind_speed_mps", wind_speed_mps, 0.0, 100.0);
     if (wind_to_rad)
@@ -391,6 +399,18 @@ const std::vector<preset_def>& preset_table()
             { "compass_noise_rad", "0.05235987755982988" },
             { "airspeed_error_mps", "0.5" },
             { "turn_rate_rad_per_s", "0.5235987755982988" } } },
+        { "fixedwing15",
+          "a fixed wing at 15 m/s: coordinated turns at a 30 deg bank (22 deg/s), "
+          "60 deg/s roll rate",
+          { { "speed_mps", "15" },
+            { "bank_limit_rad", "0.5235987755982988" },
+            { "roll_rate_rad_per_s", "1.0471975511965976" } } },
+        { "fixedwing25",
+          "a fixed wing at 25 m/s: coordinated turns at a 30 deg bank (13 deg/s), "
+          "60 deg/s roll rate",
+          { { "speed_mps", "25" },
+            { "bank_limit_rad", "0.5235987755982988" },
+            { "roll_rate_rad_per_s", "1.0471975511965976" } } },
     };
     return table;
 }

@@ -51,6 +51,8 @@ void validate_adaptive(const seeker_config& c)
         bad("adaptive_relocate_slots", c.adaptive_relocate_slots, "in [0, 100000]");
     if (c.adaptive_track_slots < 1 || c.adaptive_track_slots > 10000)
         bad("adaptive_track_slots", c.adaptive_track_slots, "in [1, 10000]");
+    if (!(c.adaptive_turn_share > 0.0 && c.adaptive_turn_share <= 1.0))
+        bad("adaptive_turn_share", c.adaptive_turn_share, "in (0, 1]");
     if (!(c.adaptive_gain > 0.0 && c.adaptive_gain <= 1.0))
         bad("adaptive_gain", c.adaptive_gain, "in (0, 1]");
     if (!(c.adaptive_delta_min_rad > 0.0 && c.adaptive_delta_min_rad < M_PI / 2))
@@ -104,11 +106,14 @@ void validate_arrival(const seeker_config& c)
     if (!(c.loiter_radius_m >= c.speed_mps * c.slot_period_s / M_PI &&
           c.loiter_radius_m <= 1e5))
         bad("loiter_radius_m", c.loiter_radius_m, "in [v T_slot / pi, 1e5] m");
-    if (c.self_arrival && c.turn_rate_rad_per_s > 0.0 &&
-        c.loiter_radius_m < c.speed_mps / c.turn_rate_rad_per_s)
+    const turn_limits lim{
+        c.turn_rate_rad_per_s, c.bank_limit_rad, c.roll_rate_rad_per_s, c.speed_mps
+    };
+    if (c.self_arrival && lim.limited() && c.loiter_radius_m < lim.min_radius_m())
         bad("loiter_radius_m",
             c.loiter_radius_m,
-            ">= speed_mps / turn_rate_rad_per_s (an orbit the vehicle can turn)");
+            ">= the tightest turn, speed_mps / turn rate (an orbit the vehicle can "
+            "turn)");
     if (!(c.locate_orbits > 0.0 && c.locate_orbits <= 100.0))
         bad("locate_orbits", c.locate_orbits, "in (0, 100]");
     if (!(c.locate_max_orbits >= c.locate_orbits && c.locate_max_orbits <= 1000.0))
@@ -170,6 +175,16 @@ void seeker_config::validate() const
         bad("relock_count", relock_count, "in [1, 1000]");
     if (!(turn_rate_rad_per_s >= 0.0) || !std::isfinite(turn_rate_rad_per_s))
         bad("turn_rate_rad_per_s", turn_rate_rad_per_s, ">= 0 (0 = instantaneous)");
+    if (!(bank_limit_rad >= 0.0 && bank_limit_rad <= 1.3962634015954636))
+        bad("bank_limit_rad", bank_limit_rad, "in [0, 80 deg] (0 = no bank limit)");
+    if (!(roll_rate_rad_per_s >= 0.0 && roll_rate_rad_per_s <= 20.0))
+        bad("roll_rate_rad_per_s",
+            roll_rate_rad_per_s,
+            "in [0, 20] rad/s (0 = instantaneous)");
+    if (roll_rate_rad_per_s > 0.0 && bank_limit_rad == 0.0)
+        bad("roll_rate_rad_per_s",
+            roll_rate_rad_per_s,
+            "0 unless bank_limit_rad > 0 (a roll-rate limit needs a bank limit)");
     if (hold_after_missing < 1)
         bad("hold_after_missing", hold_after_missing, ">= 1");
     if (rss_run_slots < 4 || rss_run_slots > 100000)
@@ -210,6 +225,10 @@ std::vector<std::string> seeker_config::keys()
              "literal_eq4",
              "relock_count",
              "turn_rate_rad_per_s",
+             "bank_limit_rad",
+             "bank_limit_deg",
+             "roll_rate_rad_per_s",
+             "roll_rate_deg_per_s",
              "hold_after_missing",
              "initial_heading_rad",
              "seed",
@@ -223,6 +242,7 @@ std::vector<std::string> seeker_config::keys()
              "adaptive_acquire_slots",
              "adaptive_relocate_slots",
              "adaptive_track_slots",
+             "adaptive_turn_share",
              "adaptive_gain",
              "adaptive_delta_min_rad",
              "adaptive_delta_min_deg",
@@ -299,6 +319,10 @@ const std::map<std::string, seeker_setting>& settings()
         RFSEEK_SETTING(literal_eq4, literal_eq4, boolean),
         RFSEEK_SETTING(relock_count, relock_count, integer),
         RFSEEK_SETTING(turn_rate_rad_per_s, turn_rate_rad_per_s, real),
+        RFSEEK_SETTING(bank_limit_rad, bank_limit_rad, real),
+        RFSEEK_SETTING(bank_limit_deg, bank_limit_rad, degrees),
+        RFSEEK_SETTING(roll_rate_rad_per_s, roll_rate_rad_per_s, real),
+        RFSEEK_SETTING(roll_rate_deg_per_s, roll_rate_rad_per_s, degrees),
         RFSEEK_SETTING(hold_after_missing, hold_after_missing, integer),
         RFSEEK_SETTING(rss_run_slots, rss_run_slots, integer),
         RFSEEK_SETTING(rss_good_ratio, rss_good_ratio, real),
@@ -310,6 +334,7 @@ const std::map<std::string, seeker_setting>& settings()
         RFSEEK_SETTING(adaptive_acquire_slots, adaptive_acquire_slots, integer),
         RFSEEK_SETTING(adaptive_relocate_slots, adaptive_relocate_slots, integer),
         RFSEEK_SETTING(adaptive_track_slots, adaptive_track_slots, integer),
+        RFSEEK_SETTING(adaptive_turn_share, adaptive_turn_share, real),
         RFSEEK_SETTING(adaptive_gain, adaptive_gain, real),
         RFSEEK_SETTING(adaptive_delta_min_rad, adaptive_delta_min_rad, real),
         RFSEEK_SETTING(adaptive_delta_min_deg, adaptive_delta_min_rad, degrees),

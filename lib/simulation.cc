@@ -60,6 +60,8 @@ seeker_config simulation::seeker_for(const scenario& sc, const std::string& stra
     c.carrier_hz = sc.carrier_hz;
     c.slot_period_s = sc.slot_period_s;
     c.turn_rate_rad_per_s = sc.turn_rate_rad_per_s;
+    c.bank_limit_rad = sc.bank_limit_rad;
+    c.roll_rate_rad_per_s = sc.roll_rate_rad_per_s;
     c.locate_altitude_m = sc.altitude_m + sc.altimeter_error_m; // the altimeter's
     c.seed = sc.seed;
     c.self_arrival = sc.self_arrival;

@@ -15,7 +15,9 @@
 
 #include "ground_track.h"
 #include "outlier_filter.h"
+#include "turn_model.h"
 #include <gr-rfseek/seeker.h>
+#include <cmath>
 #include <memory>
 
 namespace gr {
@@ -47,6 +49,27 @@ inline ground_track_guidance make_ground_track(const seeker_config& cfg)
     g.gate = cfg.ground_track_gate;
     g.rate_walk = cfg.ground_track_rate_walk;
     return ground_track_guidance(g);
+}
+
+//! The turn limits the strategies plan with (the vehicle's, as the configuration says).
+inline turn_limits turn_limits_of(const seeker_config& cfg)
+{
+    return turn_limits{ cfg.turn_rate_rad_per_s,
+                        cfg.bank_limit_rad,
+                        cfg.roll_rate_rad_per_s,
+                        cfg.speed_mps };
+}
+
+//! Slots until a heading change of |turn| is flown (0 without a turn limit).
+inline int settle_slots(const seeker_config& cfg, double turn)
+{
+    const turn_limits lim = turn_limits_of(cfg);
+    if (!lim.limited())
+        return 0;
+    const double slots = lim.rolls()
+                             ? lim.change_time_s(turn) / cfg.slot_period_s
+                             : std::abs(turn) / (lim.max_rate() * cfg.slot_period_s);
+    return static_cast<int>(std::ceil(slots - 1e-9));
 }
 
 } // namespace rfseek

@@ -57,7 +57,11 @@ public:
     {
         rng g(cfg.seed, 11);
         d_sense = g.uniform() < 0.5 ? 1.0 : -1.0;
-        const double step = cfg.speed_mps * cfg.slot_period_s / cfg.circle_radius_m;
+        // The circle at circle_radius_m, or at the turn limit where the radius needs it.
+        const turn_limits lim = turn_limits_of(cfg);
+        double step = cfg.speed_mps * cfg.slot_period_s / cfg.circle_radius_m;
+        if (lim.limited() && step > lim.max_rate() * cfg.slot_period_s)
+            step = lim.max_rate() * cfg.slot_period_s;
         d_circle_step = step;
         d_circle_cmds = std::max(1L, std::lround(2.0 * M_PI / step));
     }
@@ -168,13 +172,7 @@ private:
         return c;
     }
 
-    int settle_slots(double turn) const
-    {
-        if (d_cfg.turn_rate_rad_per_s <= 0.0)
-            return 0;
-        return static_cast<int>(std::ceil(
-            std::abs(turn) / (d_cfg.turn_rate_rad_per_s * d_cfg.slot_period_s) - 1e-9));
-    }
+    int settle_slots(double turn) const { return rfseek::settle_slots(d_cfg, turn); }
 
     // After an outage the errors measured before it say nothing of the bearing now.
     void reset_delta_k()

@@ -15,6 +15,7 @@
  */
 
 #include "kernels.h"
+#include "turn_model.h"
 #include <gr-rfseek/world.h>
 #include <volk/volk.h>
 #include <algorithm>
@@ -324,9 +325,19 @@ void world::advance(double commanded_heading_rad)
     // and its compass then reads the flown heading minus that same error.
     draw_compass_error(d_slot + 1);
     const double target = wrap(commanded_heading_rad + d_compass_err);
-    const double rate = d_sc.turn_rate_rad_per_s;
+    const turn_limits lim{
+        d_sc.turn_rate_rad_per_s, d_sc.bank_limit_rad, d_sc.roll_rate_rad_per_s, v
+    };
+    const double rate = lim.max_rate();
 
-    if (rate <= 0.0) {
+    if (lim.rolls()) { // coordinated turn: the bank follows the roll-rate limit
+        coordinated_turn turn(lim, d_heading, d_bank);
+        turn.step(target, dt);
+        d_heading = turn.heading_rad();
+        d_bank = turn.bank_rad();
+        d_x += v * turn.path_x();
+        d_y += v * turn.path_y();
+    } else if (rate <= 0.0) {
         d_heading = target;
         d_x += v * dt * std::cos(d_heading);
         d_y += v * dt * std::sin(d_heading);

@@ -60,6 +60,10 @@ struct RFSEEK_API scenario {
     double heading_noise_rad =
         0.034906585039886591;         //!< sigma_phi (2 deg), white per slot
     double turn_rate_rad_per_s = 0.0; //!< 0 = instantaneous turns (paper)
+    //! Coordinated turns (docs/world.md "Turns"): bank limit; turn rate g tan(bank) / v.
+    double bank_limit_rad = 0.0; //!< 0 = no bank limit
+    //! Roll-rate limit with bank_limit_rad: a heading change first waits for the roll.
+    double roll_rate_rad_per_s = 0.0; //!< 0 = instantaneous roll
     // Real flight (docs/world.md); the zeros keep the paper's flat, windless world.
     double altitude_m = 0.0;     //!< UAV height above the emitter (scatterers: ground)
     double wind_speed_mps = 0.0; //!< mean wind

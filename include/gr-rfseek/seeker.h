@@ -58,6 +58,11 @@ struct RFSEEK_API seeker_config {
     //! trend; false = the paper's argmax of the moving average.
     bool stage1_fit = true;
     double turn_rate_rad_per_s = 0.0; //!< the vehicle's limit; 0 = instantaneous
+    //! Bank limit of coordinated turns (turn rate g tan(bank) / v); 0 = none.
+    double bank_limit_rad = 0.0;
+    //! Roll-rate limit with bank_limit_rad (a heading change waits for the roll);
+    //! 0 = instantaneous roll. The strategies plan their turns with these limits.
+    double roll_rate_rad_per_s = 0.0;
     int hold_after_missing =
         10; //!< slots without valid measurements before holding course
     std::optional<double> initial_heading_rad; //!< Stage-2 start for paper_no_circle
@@ -79,7 +84,10 @@ struct RFSEEK_API seeker_config {
     //! Slots flown straight on before an acquisition is retried (out of a fade).
     int adaptive_relocate_slots = 20;
     int adaptive_track_slots = 20; //!< slots per probe segment (4 segments per cycle)
-    double adaptive_gain = 0.5;    //!< fraction of the estimated error removed per cycle
+    //! With a turn limit, segments are lengthened so that the reversals take at most
+    //! this share of a probe cycle (in (0, 1]).
+    double adaptive_turn_share = 0.25;
+    double adaptive_gain = 0.5; //!< fraction of the estimated error removed per cycle
     double adaptive_delta_min_rad = 0.03490658503988659; //!< 2 deg
     double adaptive_delta_max_rad = 0.3490658503988659;  //!< 20 deg
     //! Estimated errors beyond this (or flying away) start a new acquisition.

@@ -53,6 +53,8 @@ public:
     double x_m() const { return d_x; }
     double y_m() const { return d_y; }
     double heading_rad() const { return d_heading; }
+    //! Bank angle (rad, + turning counter-clockwise); 0 unless the turns are coordinated.
+    double bank_rad() const { return d_bank; }
     //! Heading the UAV's sensors report for this slot: the true heading minus the
     //! compass error it flies with, plus sigma_phi noise.
     double measured_heading_rad() const { return d_measured_heading; }
@@ -160,6 +162,7 @@ private:
     std::vector<double> d_scatterer_range; // emitter to scatterer i
     std::uint64_t d_slot = 0;
     double d_x = 0.0, d_y = 0.0, d_heading = 0.0, d_measured_heading = 0.0;
+    double d_bank = 0.0;
     double d_flown = 0.0;
     double d_cfo_hz = 0.0, d_cfo_drift = 0.0, d_cfo_phase = 0.0;
     double d_amp = 0.0, d_noise_power = 0.0;

@@ -8,6 +8,7 @@ the rows, identical rows with 1 and 2 threads, the CSV, the plots, and bad optio
 
 import csv
 import json
+import math
 import os
 import statistics
 import subprocess
@@ -305,6 +306,25 @@ class qa_montecarlo(gr_unittest.TestCase):
         p, _ = run_mc(self.tmp, "bad", "--preset", "reference,stormy")
         self.assertEqual(p.returncode, 2)
         self.assertIn("stormy", p.stderr)
+
+    def test_fixedwing25(self):
+        # A fixed wing at 25 m/s banking 30 deg (13 deg/s after a 0.5 s roll): 30 runs at
+        # relaxed bounds. adaptive's acquisition ends on the arc that holds a sure
+        # bearing and its probes are timed for the roll; before it planned its turns for
+        # the airframe it flew 1.17 x here. paper flies its circle at the bank limit.
+        p, out = run_mc(self.tmp, "fw25", "--runs", "30", "--strategy", "adaptive,paper",
+                        "--preset", "fixedwing25", "--threads", "2", "--quiet")
+        self.assertEqual(p.returncode, 0, p.stderr)
+        res = json.load(open(out))
+        sc = res["presets"]["scenarios"]["fixedwing25"]
+        self.assertEqual(sc["speed_mps"], 25)
+        self.assertAlmostEqual(math.degrees(sc["bank_limit_rad"]), 30.0)
+        self.assertAlmostEqual(math.degrees(sc["roll_rate_rad_per_s"]), 60.0)
+        for strategy, bound in (("adaptive", 1.10), ("paper", 1.25)):
+            rows = [r for r in res["rows"] if r["strategy"] == strategy]
+            self.assertEqual(len(rows), 30)
+            self.assertGreaterEqual(sum(r["success"] for r in rows), 29, strategy)
+            self.assertLessEqual(statistics.mean(r["ratio"] for r in rows), bound, strategy)
 
     def test_bad_options_exit_2_with_a_message(self):
         for args, word in ((["--runs", "0"], "--runs"),

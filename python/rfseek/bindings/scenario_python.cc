@@ -4,7 +4,7 @@
  */
 
 /* BINDTOOL_HEADER_FILE(scenario.h) */
-/* BINDTOOL_HEADER_FILE_HASH(a221c19ae3436da4c75e6177776923cc) */
+/* BINDTOOL_HEADER_FILE_HASH(eee502dd278a84ea248199649a696910) */
 
 #include "kwargs.h"
 #include <gr-rfseek/scenario.h>
@@ -127,6 +127,11 @@ void bind_scenario(py::module& m)
     RW(speed_mps, "v (m/s)");
     RW(heading_noise_rad, "sigma_phi: heading measurement noise (rad)");
     RW(turn_rate_rad_per_s, "maximum turn rate (rad/s); 0 = instantaneous");
+    RW(bank_limit_rad,
+       "bank limit of coordinated turns (rad, <= 80 deg; turn rate g tan(bank) / v); 0 = "
+       "none");
+    RW(roll_rate_rad_per_s,
+       "roll-rate limit with bank_limit_rad (rad/s, <= 20); 0 = instantaneous roll");
     RW(altitude_m, "UAV height above the emitter (m); scatterers on the ground");
     RW(wind_speed_mps, "mean wind speed (m/s)");
     RW(wind_to_rad,

@@ -4,7 +4,7 @@
  */
 
 /* BINDTOOL_HEADER_FILE(seeker.h) */
-/* BINDTOOL_HEADER_FILE_HASH(f8bce3a90c6d64703e34d5bcd0130978) */
+/* BINDTOOL_HEADER_FILE_HASH(30a37146d61bec77c7590e1ed6ca4353) */
 
 #include "kwargs.h"
 #include <gr-rfseek/seeker.h>
@@ -99,6 +99,9 @@ void bind_seeker_config(py::module& m)
     RW(stage1_fit,
        "paper: Stage 1 by least squares with a CFO trend (False: the paper's argmax)");
     RW(turn_rate_rad_per_s, "vehicle turn-rate limit (rad/s); 0 = instantaneous");
+    RW(bank_limit_rad, "vehicle bank limit (rad, <= 80 deg); 0 = none");
+    RW(roll_rate_rad_per_s,
+       "vehicle roll-rate limit with bank_limit_rad (rad/s, <= 20); 0 = instantaneous");
     RW(hold_after_missing, "slots without valid measurements before holding course");
     RW(initial_heading_rad,
        "Stage-2 start for paper_no_circle (None: first measured heading)");
@@ -113,6 +116,9 @@ void bind_seeker_config(py::module& m)
     RW(adaptive_relocate_slots,
        "adaptive: slots flown straight on before an acquisition is retried");
     RW(adaptive_track_slots, "adaptive: slots per probe segment (4 per cycle)");
+    RW(adaptive_turn_share,
+       "adaptive, coordinated turns: the largest share of a probe cycle spent reversing "
+       "(in (0, 1])");
     RW(adaptive_gain, "adaptive: fraction of the measured error removed per cycle");
     RW(adaptive_delta_min_rad, "adaptive: smallest probe half-angle (rad)");
     RW(adaptive_delta_max_rad, "adaptive: largest probe half-angle (rad)");

@@ -4,7 +4,7 @@
  */
 
 /* BINDTOOL_HEADER_FILE(world.h) */
-/* BINDTOOL_HEADER_FILE_HASH(e5b6c5082c4801050dab2ab9663497cc) */
+/* BINDTOOL_HEADER_FILE_HASH(e845d861bf1eab58acfcad9e00f5197e) */
 
 #include <gr-rfseek/world.h>
 #include <pybind11/complex.h>
@@ -123,6 +123,10 @@ void bind_world(py::module& m)
             .def_property_readonly("heading_rad",
                                    &world::heading_rad,
                                    "True air heading flown (rad, CCW from east).")
+            .def_property_readonly("bank_rad",
+                                   &world::bank_rad,
+                                   "Bank angle (rad, + turning counter-clockwise); 0 "
+                                   "unless the turns are coordinated.")
             .def_property_readonly("measured_heading_rad",
                                    &world::measured_heading_rad,
                                    "Heading the UAV's sensors report for this slot: the "

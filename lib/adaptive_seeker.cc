@@ -51,7 +51,7 @@ constexpr int ACQ_ROUNDS = 4;                 // rounds whose samples a retry ke
 constexpr int ACQ_MIN_SAMPLES = 8;            // accepted samples for a 4-term fit
 constexpr double ACQ_MAX_STD = 0.25;          // rad (14 deg): the fit's bearing std
 // A turn-limited acquisition ends early once the arc flown holds a sure fit:
-constexpr double ARC_MIN = 2.356194490192345;   // rad (135 deg) of heading flown
+constexpr double ARC_MIN = 1.0471975511965976;  // rad (60 deg) of the model's heading
 constexpr double ARC_DRIFT = 5.235987755982988; // rad (300 deg): fit the drift from here
 constexpr double ARC_MAX_STD = 0.07; //           // rad (4 deg): the fit's bearing std
 constexpr double ARC_AMP_TOL = 0.25; // |A fitted / f_d,max - 1|
@@ -115,8 +115,8 @@ public:
                 d_samples.push_back(doppler_sample{ psi, m.time_s, m.freq_hz });
         }
         if (d_acquiring && d_tag_cycle == d_cycle)
-            d_arc += std::abs(world::wrap(psi - d_arc_last));
-        d_arc_last = psi;
+            d_arc += std::abs(world::wrap(d_model - d_arc_last)); // the model: no noise
+        d_arc_last = d_model;
 
         d_missing = valid ? 0 : d_missing + 1;
         if (d_missing >= d_cfg.hold_after_missing) {

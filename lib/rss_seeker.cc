@@ -163,13 +163,8 @@ private:
     void turn_to(double h)
     {
         h = world::wrap(h);
-        const turn_limits lim = turn_limits_of(d_cfg);
-        if (lim.rolls())
-            d_settle = settle_slots(d_cfg, world::wrap(h - d_heading));
-        else if (lim.limited())
-            d_settle =
-                static_cast<int>(std::ceil(std::abs(world::wrap(h - d_heading)) /
-                                           (lim.max_rate() * d_cfg.slot_period_s)));
+        if (turn_limits_of(d_cfg).limited())
+            d_settle = settle_slots(d_cfg, world::wrap(h - d_heading), 0.0);
         d_heading = h;
         d_run_means.clear();
         d_bad = 0;

@@ -6,6 +6,7 @@
  * scenario: validation, derived quantities and by-name access to the run parameters.
  */
 
+#include "parse_setting.h"
 #include <gr-rfseek/scenario.h>
 #include <nlohmann/json.hpp>
 #include <cerrno>
@@ -63,14 +64,7 @@ void require_nonneg(const std::string& field, double v)
 
 double parse_double(const std::string& key, const std::string& text)
 {
-    const char* s = text.c_str();
-    char* end = nullptr;
-    errno = 0;
-    const double v = std::strtod(s, &end);
-    if (end == s || *end != '\0' || errno == ERANGE)
-        throw std::invalid_argument("scenario." + key + ": cannot parse '" + text +
-                                    "' as a number");
-    return v;
+    return parse_number("scenario", key, text);
 }
 
 enum class kind { real, integer, boolean, optional_real, unsigned64 };
@@ -258,14 +252,9 @@ void scenario::set(const std::string& key, const std::string& value)
     case kind::real:
         *static_cast<double*>(p) = parse_double(key, value);
         break;
-    case kind::integer: {
-        const double v = parse_double(key, value);
-        if (v != std::floor(v) || std::abs(v) > std::numeric_limits<int>::max())
-            throw std::invalid_argument("scenario." + key + ": '" + value +
-                                        "' is not an integer");
-        *static_cast<int*>(p) = static_cast<int>(v);
+    case kind::integer:
+        *static_cast<int*>(p) = parse_int("scenario", key, value);
         break;
-    }
     case kind::unsigned64: {
         char* end = nullptr;
         errno = 0;
@@ -277,13 +266,7 @@ void scenario::set(const std::string& key, const std::string& value)
         break;
     }
     case kind::boolean:
-        if (value == "true" || value == "1" || value == "True")
-            *static_cast<bool*>(p) = true;
-        else if (value == "false" || value == "0" || value == "False")
-            *static_cast<bool*>(p) = false;
-        else
-            throw std::invalid_argument("scenario." + key + ": '" + value +
-                                        "' is not true/false");
+        *static_cast<bool*>(p) = parse_bool("scenario", key, value);
         break;
     case kind::optional_real:
         if (value == "none" || value == "None" || value == "random" || value.empty())

@@ -7,6 +7,7 @@
  * factory. The strategies themselves are one per file (strategies.h lists them).
  */
 
+#include "parse_setting.h"
 #include "strategies.h"
 #include <gr-rfseek/scenario.h>
 #include <gr-rfseek/seeker.h>
@@ -106,9 +107,7 @@ void validate_arrival(const seeker_config& c)
     if (!(c.loiter_radius_m >= c.speed_mps * c.slot_period_s / M_PI &&
           c.loiter_radius_m <= 1e5))
         bad("loiter_radius_m", c.loiter_radius_m, "in [v T_slot / pi, 1e5] m");
-    const turn_limits lim{
-        c.turn_rate_rad_per_s, c.bank_limit_rad, c.roll_rate_rad_per_s, c.speed_mps
-    };
+    const turn_limits lim = turn_limits_of(c);
     if (c.self_arrival && lim.limited() && c.loiter_radius_m < lim.min_radius_m())
         bad("loiter_radius_m",
             c.loiter_radius_m,
@@ -380,14 +379,7 @@ const std::map<std::string, seeker_setting>& settings()
 
 void seeker_config::set(const std::string& key, const std::string& value)
 {
-    auto number = [&]() {
-        char* end = nullptr;
-        const double v = std::strtod(value.c_str(), &end);
-        if (value.empty() || *end != '\0')
-            throw std::invalid_argument("seeker_config." + key + ": cannot parse '" +
-                                        value + "' as a number");
-        return v;
-    };
+    auto number = [&]() { return parse_number("seeker_config", key, value); };
     if (key == "strategy") {
         strategy = value;
         return;
@@ -414,22 +406,11 @@ void seeker_config::set(const std::string& key, const std::string& value)
     case setting::degrees:
         *static_cast<double*>(member) = number() * M_PI / 180.0;
         break;
-    case setting::integer: {
-        const double v = number();
-        if (v != std::floor(v) || std::abs(v) > 2e9)
-            throw std::invalid_argument("seeker_config." + key + ": '" + value +
-                                        "' is not an integer");
-        *static_cast<int*>(member) = static_cast<int>(v);
+    case setting::integer:
+        *static_cast<int*>(member) = parse_int("seeker_config", key, value);
         break;
-    }
     case setting::boolean:
-        if (value == "true" || value == "True" || value == "1")
-            *static_cast<bool*>(member) = true;
-        else if (value == "false" || value == "False" || value == "0")
-            *static_cast<bool*>(member) = false;
-        else
-            throw std::invalid_argument("seeker_config." + key + ": '" + value +
-                                        "' is not true or false");
+        *static_cast<bool*>(member) = parse_bool("seeker_config", key, value);
         break;
     }
 }

@@ -60,8 +60,9 @@ inline turn_limits turn_limits_of(const seeker_config& cfg)
                         cfg.speed_mps };
 }
 
-//! Slots until a heading change of |turn| is flown (0 without a turn limit).
-inline int settle_slots(const seeker_config& cfg, double turn)
+//! Slots until a heading change of |turn| is flown (0 without a turn limit): the
+//! ceiling of the turn's time in slots less `slack`.
+inline int settle_slots(const seeker_config& cfg, double turn, double slack = 1e-9)
 {
     const turn_limits lim = turn_limits_of(cfg);
     if (!lim.limited())
@@ -69,7 +70,7 @@ inline int settle_slots(const seeker_config& cfg, double turn)
     const double slots = lim.rolls()
                              ? lim.change_time_s(turn) / cfg.slot_period_s
                              : std::abs(turn) / (lim.max_rate() * cfg.slot_period_s);
-    return static_cast<int>(std::ceil(slots - 1e-9));
+    return static_cast<int>(std::ceil(slots - slack));
 }
 
 } // namespace rfseek

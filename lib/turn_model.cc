@@ -8,14 +8,14 @@
 #include "turn_model.h"
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 namespace gr {
 namespace rfseek {
 
 namespace {
-constexpr double G = 9.80665;  // m/s^2
-constexpr int SUBSTEPS = 8;    // per step of the coordinated turn
-constexpr double SNAP = 1e-12; // rad: aligned
+constexpr double G = 9.80665; // m/s^2
+constexpr int SUBSTEPS = 8;   // per step of the coordinated turn
 } // namespace
 
 double turn_limits::max_rate() const
@@ -72,34 +72,12 @@ void coordinated_turn::set_heading(double heading_rad)
 
 void coordinated_turn::step(double command_rad, double dt)
 {
+    if (!d_lim.rolls())
+        throw std::logic_error(
+            "coordinated_turn::step: needs a bank and a roll-rate limit "
+            "(a plain turn-rate limit is the world's arc)");
     const double target = wrap_remainder(command_rad);
-    const double w = d_lim.max_rate();
     d_px = d_py = 0.0;
-    if (w <= 0.0) { // no limit: the heading jumps
-        d_heading = target;
-        d_px = dt * std::cos(d_heading);
-        d_py = dt * std::sin(d_heading);
-        d_turning = false;
-        return;
-    }
-    if (!d_lim.rolls()) { // an arc at the maximum rate until aligned, then straight
-        const double err = wrap_remainder(target - d_heading);
-        const double turn_time = std::min(std::abs(err) / w, dt);
-        const double r = err >= 0.0 ? w : -w;
-        if (turn_time > 0.0) {
-            const double h1 = d_heading + r * turn_time;
-            d_px += (std::sin(h1) - std::sin(d_heading)) / r;
-            d_py -= (std::cos(h1) - std::cos(d_heading)) / r;
-            d_heading = h1;
-        }
-        if (std::abs(wrap_remainder(target - d_heading)) < SNAP)
-            d_heading = target;
-        d_heading = wrap_remainder(d_heading);
-        d_px += (dt - turn_time) * std::cos(d_heading);
-        d_py += (dt - turn_time) * std::sin(d_heading);
-        d_turning = d_heading != target;
-        return;
-    }
     // Coordinated turn. Working in the turn's sense (b > 0 banks toward the command),
     // each sub-step takes the largest of: roll further in, hold the bank, roll out,
     // such that rolling out afterwards (stop(b) = (g / (v p)) (-ln cos b)) still ends

@@ -52,9 +52,9 @@ public:
     coordinated_turn(const turn_limits& lim, double heading_rad, double bank_rad = 0.0);
 
     /*!
-     * Fly dt toward the commanded heading; returns nothing, the air path of the step
-     * per unit airspeed is in path_x() / path_y(). With no roll limit this is the
-     * arc-then-straight of the rate-limited turn; with one, eight sub-steps.
+     * Fly dt toward the commanded heading in eight sub-steps; the air path of the step
+     * per unit airspeed is then in path_x() / path_y(). Needs limits().rolls(): the
+     * plain rate-limited arc is flown by world::advance and the strategies' own model.
      */
     void step(double command_rad, double dt);
 

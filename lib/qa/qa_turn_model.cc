@@ -67,6 +67,9 @@ TEST(TurnModel, SteadyLimitsAreTheBankAndRateFormulas)
     EXPECT_FALSE(r.rolls());
     EXPECT_DOUBLE_EQ(r.change_time_s(1.0), 2.0);
     EXPECT_DOUBLE_EQ(turn_limits().change_time_s(1.0), 0.0);
+    // The stepped model is the coordinated turn only (the world flies the plain arc).
+    coordinated_turn plain(r, 0.0);
+    EXPECT_THROW(plain.step(1.0, 0.05), std::logic_error);
 }
 
 TEST(TurnModel, ReversalTimeMatchesTheClosedForm)

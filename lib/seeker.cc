@@ -186,14 +186,12 @@ void seeker_config::validate() const
             "0 unless bank_limit_rad > 0 (a roll-rate limit needs a bank limit)");
     if (hold_after_missing < 1)
         bad("hold_after_missing", hold_after_missing, ">= 1");
-    if (rss_run_slots < 4 || rss_run_slots > 100000)
-        bad("rss_run_slots", rss_run_slots, "in [4, 100000]");
-    if (!(rss_good_ratio > 0.0 && rss_good_ratio <= 1.0))
-        bad("rss_good_ratio", rss_good_ratio, "in (0, 1]");
-    if (!(rss_reverse_db > 0.0) || !std::isfinite(rss_reverse_db))
-        bad("rss_reverse_db", rss_reverse_db, "> 0");
-    if (rss_min_runs < 2 || rss_min_runs > 100000)
-        bad("rss_min_runs", rss_min_runs, "in [2, 100000]");
+    if (!(rss_block_m >= 1.0 && rss_block_m <= 100000.0))
+        bad("rss_block_m", rss_block_m, "in [1, 100000] m");
+    if (rss_window_blocks < 1 || rss_window_blocks > 1000)
+        bad("rss_window_blocks", rss_window_blocks, "in [1, 1000]");
+    if (!(rss_fall_db >= 0.0 && rss_fall_db <= 60.0))
+        bad("rss_fall_db", rss_fall_db, "in [0, 60] dB");
     if (lock_count < 1 || lock_count > 1000)
         bad("lock_count", lock_count, "in [1, 1000]");
     if (std::isnan(min_snr_db) || min_snr_db > 100.0)
@@ -231,10 +229,9 @@ std::vector<std::string> seeker_config::keys()
              "hold_after_missing",
              "initial_heading_rad",
              "seed",
-             "rss_run_slots",
-             "rss_good_ratio",
-             "rss_reverse_db",
-             "rss_min_runs",
+             "rss_block_m",
+             "rss_window_blocks",
+             "rss_fall_db",
              "lock_count",
              "min_snr_db",
              "stage1_fit",
@@ -323,10 +320,9 @@ const std::map<std::string, seeker_setting>& settings()
         RFSEEK_SETTING(roll_rate_rad_per_s, roll_rate_rad_per_s, real),
         RFSEEK_SETTING(roll_rate_deg_per_s, roll_rate_rad_per_s, degrees),
         RFSEEK_SETTING(hold_after_missing, hold_after_missing, integer),
-        RFSEEK_SETTING(rss_run_slots, rss_run_slots, integer),
-        RFSEEK_SETTING(rss_good_ratio, rss_good_ratio, real),
-        RFSEEK_SETTING(rss_reverse_db, rss_reverse_db, real),
-        RFSEEK_SETTING(rss_min_runs, rss_min_runs, integer),
+        RFSEEK_SETTING(rss_block_m, rss_block_m, real),
+        RFSEEK_SETTING(rss_window_blocks, rss_window_blocks, integer),
+        RFSEEK_SETTING(rss_fall_db, rss_fall_db, real),
         RFSEEK_SETTING(lock_count, lock_count, integer),
         RFSEEK_SETTING(min_snr_db, min_snr_db, real),
         RFSEEK_SETTING(stage1_fit, stage1_fit, boolean),

@@ -68,16 +68,15 @@ struct RFSEEK_API seeker_config {
     std::optional<double> initial_heading_rad; //!< Stage-2 start for paper_no_circle
                                                //!< (None: the first measured heading)
     std::uint64_t seed = 1;                    //!< circle turning sense, RSS tumbles
-    // rss_baseline (run-and-tumble on received power, after Wadhwa et al. 2011)
-    //! Slots per run (measurements judged together).
-    int rss_run_slots = 100;
-    //! A run is "along the LOS" while its fading rate stays below this fraction of the
-    //! typical (75th percentile) rate seen on the last scan circle.
-    double rss_good_ratio = 0.5;
-    //! Turn back when the power trend along a heading fell this much (dB).
-    double rss_reverse_db = 3.0;
-    //! Runs on a heading before judging toward or away.
-    int rss_min_runs = 10;
+    // rss_baseline (multi-phase RSS seeking, after Wadhwa et al. 2011): a circle finds
+    // the direction, a straight run goes on while its long-term average power rises.
+    //! Length over which a run's power is averaged into one block (m).
+    double rss_block_m = 200.0;
+    //! Blocks per long-term average: a run ends when the mean of the last window of
+    //! blocks falls below the mean of the window before by more than rss_fall_db.
+    int rss_window_blocks = 4;
+    //! Fall of the long-term average that ends a run (dB).
+    double rss_fall_db = 0.0;
     // adaptive (ours, docs/seeker.md): acquisition on three headings, then probe cycles
     // (+delta, -delta, -delta, +delta) inverted by a least-squares fit.
     int adaptive_acquire_slots = 3; //!< slots per acquisition heading (120 deg apart)

@@ -4,7 +4,7 @@
  */
 
 /* BINDTOOL_HEADER_FILE(seeker.h) */
-/* BINDTOOL_HEADER_FILE_HASH(30a37146d61bec77c7590e1ed6ca4353) */
+/* BINDTOOL_HEADER_FILE_HASH(a4c6931118e8d0c8095a254ab2707409) */
 
 #include "kwargs.h"
 #include <gr-rfseek/seeker.h>
@@ -106,12 +106,11 @@ void bind_seeker_config(py::module& m)
     RW(initial_heading_rad,
        "Stage-2 start for paper_no_circle (None: first measured heading)");
     RW(seed, "seed (circle turning sense, RSS tumbles)");
-    RW(rss_run_slots, "rss_baseline: slots per run");
-    RW(rss_good_ratio,
-       "rss_baseline: fading-rate fraction of the recent maximum for a good run");
-    RW(rss_reverse_db,
-       "rss_baseline: turn back when the power fell this much along a run");
-    RW(rss_min_runs, "rss_baseline: runs on a heading before judging toward or away");
+    RW(rss_block_m, "rss_baseline: length over which a run's power is averaged (m)");
+    RW(rss_window_blocks,
+       "rss_baseline: blocks per long-term average (a run ends when the last window's "
+       "mean falls below the window before)");
+    RW(rss_fall_db, "rss_baseline: fall of the long-term average that ends a run (dB)");
     RW(adaptive_acquire_slots, "adaptive: slots per acquisition heading");
     RW(adaptive_relocate_slots,
        "adaptive: slots flown straight on before an acquisition is retried");

@@ -39,7 +39,9 @@ public:
     explicit rss_seeker(const seeker_config& cfg)
         : d_cfg(cfg),
           d_rng(cfg.seed, 12),
-          d_monitor(block_slots(cfg), cfg.rss_window_blocks, cfg.rss_fall_db)
+          d_monitor(block_slots(cfg), cfg.rss_window_blocks, cfg.rss_fall_db),
+          d_circle_step(cfg.speed_mps * cfg.slot_period_s / cfg.circle_radius_m),
+          d_circle_cmds(std::max(1L, std::lround(2.0 * M_PI / d_circle_step)))
     {
     }
 
@@ -95,8 +97,6 @@ private:
 
     void start_scan()
     {
-        d_circle_step = d_cfg.speed_mps * d_cfg.slot_period_s / d_cfg.circle_radius_m;
-        d_circle_cmds = std::max(1L, std::lround(2.0 * M_PI / d_circle_step));
         d_scanning = true;
         d_scan_base = d_heading;
         d_sense = d_rng.uniform() < 0.5 ? 1.0 : -1.0;
@@ -120,8 +120,7 @@ private:
         d_way = e.way_rad;
         ++d_updates;
         const double to = world::wrap(d_way);
-        if (turn_limits_of(d_cfg).limited())
-            d_settle = settle_slots(d_cfg, world::wrap(to - d_heading), 0.0);
+        d_settle = settle_slots(d_cfg, world::wrap(to - d_heading), 0.0);
         d_heading = to;
         d_monitor.reset();
         return true;
@@ -130,8 +129,8 @@ private:
     seeker_config d_cfg;
     rng d_rng;
     rss::run_monitor d_monitor;
-    double d_circle_step = 0.0;
-    long d_circle_cmds = 0;
+    const double d_circle_step; // heading step of a circle of circle_radius_m (rad/slot)
+    const long d_circle_cmds;   // commands per full circle
     bool d_started = false, d_scanning = false, d_have_heading = false;
     double d_heading = 0.0, d_meas_heading = 0.0, d_way = 0.0;
     double d_scan_base = 0.0, d_sense = 1.0;

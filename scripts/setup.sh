@@ -42,8 +42,12 @@ packages=(
     pybind11-dev libgtest-dev libboost-all-dev libspdlog-dev libfmt-dev libgmp-dev
     libcli11-dev nlohmann-json3-dev libeigen3-dev
     python3-numpy python3-matplotlib python3-yaml python3-distributed
-    clang clang-format libclang-rt-14-dev
+    clang clang-format libclang-rt-14-dev libssl-dev
 )
+# Node.js runs the test-only cross-check of the MAVLink codec against node-mavlink
+# (installed below from the npm registry): Debian's, unless a node is already there.
+command -v node >/dev/null 2>&1 || packages+=(nodejs)
+command -v npm >/dev/null 2>&1 || packages+=(npm)
 if [ "${RFSEEK_SKIP_APT:-0}" != 1 ]; then
     missing=()
     for p in "${packages[@]}"; do
@@ -57,6 +61,17 @@ if [ "${RFSEEK_SKIP_APT:-0}" != 1 ]; then
             apt-get install -y -q --no-install-recommends "${missing[@]}"
     else
         echo "==> Debian packages present"
+    fi
+fi
+
+# node-mavlink, pinned by lib/qa/node/package-lock.json, into $build/node (tests only).
+if [ "$what" = test ]; then
+    mkdir -p "$build/node"
+    if ! cmp -s "$here/lib/qa/node/package-lock.json" "$build/node/package-lock.json" ||
+        [ ! -f "$build/node/node_modules/node-mavlink/package.json" ]; then
+        echo "==> installing the test dependency node-mavlink into $build/node (npm)"
+        cp "$here/lib/qa/node/package.json" "$here/lib/qa/node/package-lock.json" "$build/node/"
+        (cd "$build/node" && npm ci --no-audit --no-fund --loglevel=error)
     fi
 fi
 

@@ -5,7 +5,7 @@
  */
 
 #include "angle.h"
-#include "autopilot_session.h"
+#include <gr-rfseek/autopilot_session.h>
 #include <algorithm>
 #include <cmath>
 #include <sstream>

@@ -4,7 +4,7 @@
  * SPDX-License-Identifier: GPL-3.0-or-later
  */
 
-#include "mavlink.h"
+#include <gr-rfseek/mavlink.h>
 #include <openssl/evp.h>
 #include <algorithm>
 #include <cmath>

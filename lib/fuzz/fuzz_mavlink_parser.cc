@@ -2,15 +2,15 @@
  * Copyright 2026 gr-rfseek authors.
  * SPDX-License-Identifier: GPL-3.0-or-later
  *
- * libFuzzer harness: the MAVLink parser (lib/mavlink.h) on arbitrary byte streams in
- * arbitrary chunks, with and without a signing key. Every frame it returns must be
- * whole (its raw bytes the length its header says), counted, and, when the codec knows
- * the message, decode and re-encode to a frame the parser reads back to the same
+ * libFuzzer harness: the MAVLink parser (include/gr-rfseek/mavlink.h) on arbitrary byte
+ * streams in arbitrary chunks, with and without a signing key. Every frame it returns
+ * must be whole (its raw bytes the length its header says), counted, and, when the codec
+ * knows the message, decode and re-encode to a frame the parser reads back to the same
  * payload.
  */
 
-#include "mavlink.h"
 #include <fuzzer/FuzzedDataProvider.h>
+#include <gr-rfseek/mavlink.h>
 #include <cstdio>
 #include <cstdlib>
 #include <vector>

@@ -19,7 +19,7 @@
  *       message of the dialect table.
  */
 
-#include "mavlink.h"
+#include <gr-rfseek/mavlink.h>
 #include <nlohmann/json.hpp>
 #include <cmath>
 #include <cstdint>

@@ -3,12 +3,12 @@
  * Copyright 2026 gr-rfseek authors.
  * SPDX-License-Identifier: GPL-3.0-or-later
  *
- * The autopilot link's rules (lib/autopilot_session.h) against a scripted autopilot:
- * mode and arming gating, the command path of each family, ack retries, link loss and
- * resumption, foreign systems, signing, and the heading convention.
+ * The autopilot link's rules (include/gr-rfseek/autopilot_session.h) against a scripted
+ * autopilot: mode and arming gating, the command path of each family, ack retries, link
+ * loss and resumption, foreign systems, signing, and the heading convention.
  */
 
-#include "autopilot_session.h"
+#include <gr-rfseek/autopilot_session.h>
 #include <gtest/gtest.h>
 #include <cmath>
 

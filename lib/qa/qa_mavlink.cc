@@ -3,14 +3,14 @@
  * Copyright 2026 gr-rfseek authors.
  * SPDX-License-Identifier: GPL-3.0-or-later
  *
- * The MAVLink codec (lib/mavlink.h): known answers (the CRC catalogue's check value,
- * the CRC_EXTRA values the MAVLink documentation lists, a frame laid out by hand with
- * an independent bitwise CRC), truncation, MAVLink 1, signing and replay rules, and
- * the parser's resynchronisation. The cross-check against node-mavlink, an independent
- * implementation, is lib/qa/mavlink_crosscheck.js.
+ * The MAVLink codec (include/gr-rfseek/mavlink.h): known answers (the CRC catalogue's
+ * check value, the CRC_EXTRA values the MAVLink documentation lists, a frame laid out by
+ * hand with an independent bitwise CRC), truncation, MAVLink 1, signing and replay rules,
+ * and the parser's resynchronisation. The cross-check against node-mavlink, an
+ * independent implementation, is lib/qa/mavlink_crosscheck.js.
  */
 
-#include "mavlink.h"
+#include <gr-rfseek/mavlink.h>
 #include <gtest/gtest.h>
 #include <cmath>
 #include <map>

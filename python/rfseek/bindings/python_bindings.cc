@@ -21,6 +21,8 @@ void bind_seeker(py::module& m);
 void bind_simulation(py::module& m);
 void bind_study(py::module& m);
 void bind_seeking_controller(py::module& m);
+void bind_mavlink(py::module& m);
+void bind_autopilot_session(py::module& m);
 
 PYBIND11_MODULE(rfseek_python, m)
 {
@@ -39,4 +41,6 @@ PYBIND11_MODULE(rfseek_python, m)
     bind_simulation(m);
     bind_study(m);
     bind_seeking_controller(m);
+    bind_mavlink(m);
+    bind_autopilot_session(m);
 }

@@ -15,8 +15,8 @@
 #ifndef INCLUDED_RFSEEK_AUTOPILOT_SESSION_H
 #define INCLUDED_RFSEEK_AUTOPILOT_SESSION_H
 
-#include "mavlink.h"
 #include <gr-rfseek/api.h>
+#include <gr-rfseek/mavlink.h>
 #include <array>
 #include <cstdint>
 #include <optional>

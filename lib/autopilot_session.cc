@@ -180,6 +180,7 @@ autopilot_session::autopilot_session(const autopilot_config& config) : d_cfg(con
     d_status.reason = "no heartbeat yet from system " +
                       std::to_string(d_cfg.target_system) + " component " +
                       std::to_string(d_cfg.target_component);
+    d_reported = d_status;
     d_status_out.push_back(d_status);
 }
 
@@ -201,6 +202,7 @@ void autopilot_session::handle(const mavlink::frame& f, double t)
         return;
     }
     d_last_frame = t;
+    ++d_status.frames;
     if (!f.known())
         return;
     const mavlink::message m = f.decode();
@@ -279,9 +281,13 @@ void autopilot_session::update_state(double t)
     if (d_status.last_heartbeat < 0)
         set_state("connecting", d_status.reason);
     else if (since_frame > d_cfg.link_timeout_s)
-        set_state("lost", "nothing from the autopilot for " + fmt(since_frame) + " s");
+        set_state("lost",
+                  "nothing from the autopilot for more than " +
+                      fmt(d_cfg.link_timeout_s) + " s (link_timeout_s)");
     else if (since_hb > d_cfg.heartbeat_timeout_s)
-        set_state("lost", "no heartbeat for " + fmt(since_hb) + " s");
+        set_state("lost",
+                  "no heartbeat for more than " + fmt(d_cfg.heartbeat_timeout_s) +
+                      " s (heartbeat_timeout_s)");
     else if (!d_status.armed)
         set_state("holding", "not armed");
     else if (!d_status.in_mode)
@@ -291,8 +297,15 @@ void autopilot_session::update_state(double t)
         set_state("holding", "no heading command from the controller yet");
     else
         set_state("commanding", "");
-    if (d_status_out.empty() || !(d_status_out.back() == d_status))
+    report_status();
+}
+
+void autopilot_session::report_status()
+{
+    if (!(d_reported == d_status)) {
+        d_reported = d_status;
         d_status_out.push_back(d_status);
+    }
 }
 
 void autopilot_session::command(double heading_rad, double t)
@@ -433,8 +446,7 @@ std::vector<std::vector<std::uint8_t>> autopilot_session::poll(double t)
         send(it->msg, t, out);
         ++it;
     }
-    if (d_status_out.empty() || !(d_status_out.back() == d_status))
-        d_status_out.push_back(d_status);
+    report_status();
     return out;
 }
 

@@ -92,6 +92,7 @@ struct RFSEEK_API autopilot_status {
     std::uint32_t custom_mode = 0;
     bool in_mode = false;
     double last_heartbeat = -1; //!< time of the autopilot's last HEARTBEAT (-1: none)
+    std::uint64_t frames = 0;   //!< frames from the autopilot (its system and component)
     std::uint64_t heartbeats = 0, commands_sent = 0, commands_acked = 0,
                   commands_failed = 0, retries = 0, foreign = 0, statustext = 0;
     bool operator==(const autopilot_status& o) const
@@ -144,6 +145,7 @@ private:
     void on_ack(const mavlink::message& m, double t);
     void update_state(double t);
     void set_state(const std::string& state, const std::string& reason);
+    void report_status();
     void send(const mavlink::message& m,
               double t,
               std::vector<std::vector<std::uint8_t>>& out);
@@ -155,6 +157,7 @@ private:
     std::uint32_t d_mode_number;
     mavlink::parser d_parser;
     autopilot_status d_status;
+    autopilot_status d_reported; //!< the last snapshot queued for take_status()
     std::uint8_t d_seq = 0;
     double d_last_frame = -1, d_last_sent_heartbeat = -1e300, d_last_setpoint = -1e300;
     double d_last_heading_sent_at = -1e300;

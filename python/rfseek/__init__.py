@@ -25,6 +25,8 @@ import math as _math
 # gnuradio.rfseek.vehicle_bridge as m` gives the block). rfseek.sigmf stays the module.
 from .vehicle_bridge import loopback_vehicle, vehicle_bridge  # noqa: E402,F401
 from .sigmf import replay_source, sigmf_recorder  # noqa: E402,F401
+from .autopilot_link import autopilot_link  # noqa: E402,F401
+from .sim_autopilot import sim_autopilot  # noqa: E402,F401
 
 try:
     from .seek_view import seek_view  # noqa: E402,F401

@@ -4,7 +4,7 @@
  */
 
 /* BINDTOOL_HEADER_FILE(autopilot_session.h) */
-/* BINDTOOL_HEADER_FILE_HASH(779a168d5c4dafa44ab22f4196f3e290) */
+/* BINDTOOL_HEADER_FILE_HASH(89e1e2055afb060fc60da78d9c3fd4e7) */
 
 #include <gr-rfseek/autopilot_session.h>
 #include <pybind11/pybind11.h>
@@ -25,6 +25,7 @@ py::dict status_dict(const autopilot_status& s)
     d["custom_mode"] = s.custom_mode;
     d["in_mode"] = s.in_mode;
     d["last_heartbeat"] = s.last_heartbeat;
+    d["frames"] = s.frames;
     d["heartbeats"] = s.heartbeats;
     d["commands_sent"] = s.commands_sent;
     d["commands_acked"] = s.commands_acked;

@@ -1,0 +1,241 @@
+#!/usr/bin/python3
+#
+# Copyright 2026 gr-rfseek authors.
+# SPDX-License-Identifier: GPL-3.0-or-later
+#
+"""autopilot_link against sim_autopilot over loopback UDP (real MAVLink datagrams):
+the plane's command path end to end, mode and arming gating, link loss and resumption
+within a second, foreign systems, the .tlog, the copter setpoint stream, parameter
+errors, and the rehearsal of a whole flight (rfseek-live --vehicle mavlink). Waits poll
+a condition with a deadline (live sockets and threads); no timing is asserted beyond the
+link's own one-second rule."""
+
+import math
+import os
+import socket
+import subprocess
+import sys
+import tempfile
+import threading
+import time
+
+import pmt
+from gnuradio import blocks, gr, gr_unittest
+from gnuradio import rfseek
+from gnuradio.rfseek import mavlink
+from gnuradio.rfseek.autopilot_link import read_tlog
+
+
+def wait_until(cond, timeout=8.0):
+    ev = threading.Event()
+    for _ in range(int(timeout / 0.01)):
+        if cond():
+            return True
+        ev.wait(0.01)
+    return cond()
+
+
+class pair:
+    """A link (udpin, ephemeral port) and a simulated autopilot sending to it, running,
+    with the link's nav and status and the autopilot's cmd stored."""
+
+    def __init__(self, family="ardupilot_plane", armed=True, tlog="", **kw):
+        self.link = rfseek.autopilot_link("udpin:127.0.0.1:0", family=family, tlog=tlog, **kw)
+        self.sim = rfseek.sim_autopilot("udpout:127.0.0.1:%d" % self.link.local_address()[1],
+                                        family=family, armed=armed)
+        self.nav, self.status, self.cmd = (blocks.message_debug() for _ in range(3))
+        self.tb = gr.top_block()
+        self.tb.msg_connect(self.link, "nav", self.nav, "store")
+        self.tb.msg_connect(self.link, "status", self.status, "store")
+        self.tb.msg_connect(self.sim, "cmd", self.cmd, "store")
+        self.tb.start()
+        self.state(0.3)
+
+    def state(self, measured_heading):
+        self.sim._on_state(pmt.to_pmt({"measured_heading": measured_heading, "x": 100.0,
+                                       "y": -50.0}))
+
+    def command(self, heading):
+        self.link.handle_cmd(pmt.to_pmt({"heading": heading}))
+
+    def sim_commands(self):
+        return [pmt.to_python(self.cmd.get_message(i))["heading"]
+                for i in range(self.cmd.num_messages())]
+
+    def statuses(self):
+        return [pmt.to_python(self.status.get_message(i))
+                for i in range(self.status.num_messages())]
+
+    def close(self):
+        self.tb.stop()
+        self.tb.wait()
+        self.link.close()
+        self.sim.close()
+
+
+class qa_autopilot_link(gr_unittest.TestCase):
+
+    def test_plane_commands_reach_the_autopilot_and_headings_come_back(self):
+        p = pair(airspeed_mps=12.0)
+        try:
+            self.assertTrue(wait_until(lambda: p.link.status()["heartbeats"] >= 1))
+            p.command(-2.0)  # compass 90 + 114.6 = 204.6 deg
+            self.assertTrue(wait_until(lambda: len(p.sim_commands()) >= 1))
+            self.assertAlmostEqual(p.sim_commands()[-1], -2.0, places=5)  # float32 deg
+            self.assertTrue(wait_until(lambda: p.link.status()["commands_acked"] >= 2))
+            self.assertAlmostEqual(p.sim.airspeed, 12.0, places=5)
+            names = [r[1] for r in p.sim.received]
+            self.assertIn("HEARTBEAT", names)  # ours, as the companion computer
+            cmds = [r[2]["command"] for r in p.sim.received if r[1] == "COMMAND_LONG"]
+            self.assertEqual(sorted(set(cmds)), [178, 43002])
+            # ATTITUDE yaw -> nav heading in the module's convention, position never.
+            def last_nav():
+                k = p.nav.num_messages()
+                return pmt.to_python(p.nav.get_message(k - 1)) if k else {}
+            # VFR_HUD (4 Hz) brings the airspeed into the reports.
+            self.assertTrue(wait_until(lambda: "airspeed" in last_nav()))
+            n = last_nav()
+            self.assertAlmostEqual(n["airspeed"], 12.0, places=5)
+            self.assertAlmostEqual(n["heading"], 0.3, places=5)
+            self.assertEqual(sorted(n), ["airspeed", "heading", "time"])
+            self.assertEqual(p.statuses()[-1]["state"], "commanding")
+        finally:
+            p.close()
+
+    def test_disarmed_or_out_of_mode_holds_commands(self):
+        p = pair(armed=False)
+        try:
+            p.command(1.0)
+            self.assertTrue(wait_until(lambda: p.link.status()["state"] == "holding"))
+            self.assertEqual(p.link.status()["reason"], "not armed")
+            p.sim.set_armed(True)
+            p.sim.set_mode("FLY_BY_WIRE_A")
+            self.assertTrue(wait_until(lambda: "not GUIDED" in p.link.status()["reason"]))
+            p.command(1.1)
+            p.sim.set_mode("GUIDED")
+            self.assertTrue(wait_until(lambda: p.link.status()["state"] == "commanding"))
+            self.assertTrue(wait_until(lambda: len(p.sim_commands()) >= 1))
+            # Nothing reached the autopilot before it was armed in GUIDED.
+            self.assertEqual(len(p.sim_commands()), 1)
+            self.assertAlmostEqual(p.sim_commands()[0], 1.1, places=5)
+            reasons = [s["reason"] for s in p.statuses() if s["state"] == "holding"]
+            self.assertIn("not armed", reasons)
+        finally:
+            p.close()
+
+    def test_link_loss_stops_commands_within_a_second(self):
+        p = pair(family="ardupilot_copter")
+        try:
+            p.command(0.7)
+            self.assertTrue(wait_until(lambda: p.link.status()["state"] == "commanding"))
+            self.assertTrue(wait_until(lambda: len(p.sim_commands()) >= 5))  # 10 Hz stream
+            p.sim.set_silent(True)  # the autopilot falls silent
+            silent_at = time.monotonic()
+            self.assertTrue(wait_until(lambda: p.link.status()["state"] == "lost"))
+            wait_until(lambda: False, timeout=1.5)
+            setpoints = [t for t, name in p.sim.arrivals if name == "SET_ATTITUDE_TARGET"]
+            # The autopilot's last frame was before silent_at: commands stopped within
+            # a second of it (link_timeout_s 0.5 s), while our heartbeats go on.
+            self.assertLess(max(setpoints), silent_at + 1.0)
+            self.assertTrue(any(t > silent_at + 1.0 for t, name in p.sim.arrivals
+                                if name == "HEARTBEAT"))
+            lost = [s for s in p.statuses() if s["state"] == "lost"]
+            self.assertEqual(len(lost), 1)
+            self.assertIn("link_timeout_s", lost[0]["reason"])
+            # It resumes cleanly when the autopilot speaks again.
+            n = len(p.sim_commands())
+            p.sim.set_silent(False)
+            self.assertTrue(wait_until(lambda: p.link.status()["state"] == "commanding"))
+            self.assertTrue(wait_until(lambda: len(p.sim_commands()) > n))
+        finally:
+            p.close()
+
+    def test_foreign_system_is_dropped_and_never_answered(self):
+        p = pair()
+        try:
+            self.assertTrue(wait_until(lambda: p.link.status()["heartbeats"] >= 1))
+            intruder = socket.socket(socket.AF_INET, socket.SOCK_DGRAM)
+            hb = mavlink.message("HEARTBEAT")
+            hb.set("base_mode", 129)
+            hb.set("custom_mode", 15)
+            att = mavlink.message("ATTITUDE")
+            att.set("yaw", 2.0)
+            before = p.link.status()["foreign"]
+            for seq in range(5):
+                for m in (hb, att):
+                    intruder.sendto(mavlink.encode(m, mavlink.header(seq, 2, 1)),
+                                    p.link.local_address())
+            self.assertTrue(wait_until(lambda: p.link.status()["foreign"] >= before + 10))
+            navs = [pmt.to_python(p.nav.get_message(i))["heading"]
+                    for i in range(p.nav.num_messages())]
+            self.assertNotIn(True, [abs(h - (math.pi / 2 - 2.0)) < 1e-4 for h in navs])
+            intruder.settimeout(0.5)
+            with self.assertRaises(socket.timeout):  # the link never answers it
+                intruder.recvfrom(1024)
+            intruder.close()
+        finally:
+            p.close()
+
+    def test_tlog_holds_both_directions(self):
+        path = os.path.join(tempfile.mkdtemp(), "flight.tlog")
+        p = pair(tlog=path)
+        try:
+            p.command(0.2)
+            self.assertTrue(wait_until(lambda: p.link.status()["commands_acked"] >= 1))
+            self.assertTrue(wait_until(lambda: p.link.status()["heartbeats"] >= 2))
+        finally:
+            p.close()
+        entries = read_tlog(path)
+        parser = mavlink.parser()
+        frames = [f for _, raw in entries for f in parser.push(raw)]
+        self.assertEqual(len(frames), len(entries))  # every entry one whole, valid frame
+        stamps = [t for t, _ in entries]
+        self.assertEqual(stamps, sorted(stamps))
+        names = {(f.sysid, f.decode().name) for f in frames if f.known()}
+        for expected in ((1, "HEARTBEAT"), (1, "ATTITUDE"), (1, "COMMAND_ACK"),
+                         (1, "GLOBAL_POSITION_INT"), (1, "COMMAND_LONG")):
+            self.assertIn(expected, names)
+
+    def test_bad_parameters(self):
+        for kw, word in (({"link": "tcp:1.2.3.4:5"}, "link"),
+                         ({"link": "udpin:127.0.0.1:70000"}, "port"),
+                         ({"link": "serial:/dev/ttyS0:12345"}, "baud"),
+                         ({"family": "inav"}, "family"),
+                         ({"mode": "OFFBOARD"}, "mode"),
+                         ({"target_system": 0}, "target_system"),
+                         ({"link_timeout_s": 0}, "link_timeout_s"),
+                         ({"retries": 11}, "retries"),
+                         ({"signing_key": "abcd"}, "signing_key")):
+            with self.assertRaises(ValueError) as cm:
+                rfseek.autopilot_link(**kw)
+            self.assertIn(word, str(cm.exception))
+        with self.assertRaises(OSError) as cm:
+            rfseek.autopilot_link("serial:/dev/rfseek-no-such-device:57600")
+        self.assertIn("/dev/rfseek-no-such-device", str(cm.exception))
+
+    def test_malformed_commands_are_counted_and_dropped(self):
+        p = pair()
+        try:
+            for bad in (pmt.intern("x"), pmt.to_pmt({"heading": float("nan")}),
+                        pmt.to_pmt({"speed": 3.0})):
+                p.link.handle_cmd(bad)
+            self.assertEqual(p.link.dropped["cmd"], 3)
+            p.command(0.4)
+            self.assertTrue(wait_until(lambda: len(p.sim_commands()) >= 1))
+        finally:
+            p.close()
+
+    def test_rehearsal_over_mavlink_arrives(self):
+        live = os.path.join(os.environ.get("RFSEEK_SOURCE_DIR", "."), "apps", "rfseek-live")
+        r = subprocess.run([sys.executable, live, "--source", "sim", "--vehicle", "mavlink",
+                            "--set", "initial_distance_m=800", "--speedup", "8",
+                            "--seed", "3", "--duration", "240"],
+                           capture_output=True, text=True, timeout=400)
+        self.assertEqual(r.returncode, 0, r.stderr[-2000:])
+        self.assertIn("rfseek-live: arrived", r.stderr)
+        self.assertRegex(r.stderr, r"MAVLink link commanding: \d+ frames")
+        self.assertIn("0 failed", r.stderr)
+
+
+if __name__ == "__main__":
+    gr_unittest.run(qa_autopilot_link)

@@ -308,6 +308,15 @@ void autopilot_session::report_status()
     }
 }
 
+void autopilot_session::set_airspeed(double airspeed_mps)
+{
+    autopilot_config c = d_cfg;
+    c.airspeed_mps = airspeed_mps;
+    c.validate();
+    d_cfg.airspeed_mps = airspeed_mps;
+    d_speed_sent = false;
+}
+
 void autopilot_session::command(double heading_rad, double t)
 {
     if (!std::isfinite(heading_rad))

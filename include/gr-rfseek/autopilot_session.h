@@ -118,6 +118,8 @@ public:
     void receive(const std::uint8_t* data, std::size_t n, double t);
     //! The controller's heading command (module convention, radians).
     void command(double heading_rad, double t);
+    //! A new commanded airspeed (m/s, [0, 100]; 0: the autopilot's own), sent anew.
+    void set_airspeed(double airspeed_mps);
     //! Advance to time t: heartbeats, commands, retries, setpoints and link checks.
     //! Returns the frames to send now.
     std::vector<std::vector<std::uint8_t>> poll(double t);

@@ -294,6 +294,11 @@ class autopilot_link(gr.basic_block):
                 for when, frame in log:
                     self.tlog.write(when + offset, frame)
 
+    def set_airspeed(self, airspeed_mps):
+        """A new commanded airspeed (m/s; 0: the autopilot's own), sent when commanding."""
+        with self._lock:
+            self.session.set_airspeed(float(airspeed_mps))
+
     def status(self):
         """The link's current status (a dict, as on the status port)."""
         with self._lock:

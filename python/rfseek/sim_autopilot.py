@@ -75,6 +75,8 @@ class sim_autopilot(gr.basic_block):
         self.armed = bool(armed)
 
     def set_mode(self, mode):
+        """Switch to a mode of the family by name ('': its seeking mode)."""
+        mode = mode or _core.autopilot_default_mode(self.family)
         self.custom_mode = _core.autopilot_mode_number(self.family, mode)
         self.mode_name = mode
 

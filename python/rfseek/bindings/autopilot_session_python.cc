@@ -4,7 +4,7 @@
  */
 
 /* BINDTOOL_HEADER_FILE(autopilot_session.h) */
-/* BINDTOOL_HEADER_FILE_HASH(89e1e2055afb060fc60da78d9c3fd4e7) */
+/* BINDTOOL_HEADER_FILE_HASH(760b4eeb9acf75525dc120c326c59d37) */
 
 #include <gr-rfseek/autopilot_session.h>
 #include <pybind11/pybind11.h>
@@ -182,6 +182,10 @@ void bind_autopilot_session(py::module& m)
              py::arg("heading_rad"),
              py::arg("t"),
              "The controller's heading (radians counter-clockwise from east).")
+        .def("set_airspeed",
+             &autopilot_session::set_airspeed,
+             py::arg("airspeed_mps"),
+             "A new commanded airspeed (0: the autopilot's own), sent anew.")
         .def(
             "poll",
             [](autopilot_session& s, double t) {

@@ -176,12 +176,14 @@ class autopilot_link(gr.basic_block):
     its ATTITUDE -> "nav" out {heading, time, airspeed}; "status" out at every change
     {state, reason, armed, custom_mode, in_mode, heartbeats, commands_*, retries, foreign,
     link}. States: connecting, holding (linked but not commanding: not armed, another
-    mode, no command yet), commanding, lost."""
+    mode, no command yet), commanding, lost. time_scale > 1 runs the link's clock (rates,
+    timeouts) that many times faster, for a rehearsal paced faster than real time
+    against sim_autopilot with the same time_scale."""
 
     def __init__(self, link="udpin:127.0.0.1:14550", family="ardupilot_plane", mode="",
                  target_system=1, target_component=1, own_system=1, own_component=191,
                  airspeed_mps=0.0, link_timeout_s=0.5, ack_timeout_s=0.3, retries=3,
-                 signing_key="", tlog=""):
+                 signing_key="", tlog="", time_scale=1.0):
         gr.basic_block.__init__(self, name="autopilot_link", in_sig=None, out_sig=None)
         cfg = _core.autopilot_config()
         cfg.family = family
@@ -211,6 +213,10 @@ class autopilot_link(gr.basic_block):
             cfg.signing_key = key
             cfg.signing_clock_offset_s = time.time() - 1420070400.0 - time.monotonic()
         cfg.validate()
+        if not (isinstance(time_scale, (int, float)) and 1.0 <= time_scale <= 100.0):
+            raise ValueError("autopilot_link: time_scale = %r: must be in [1, 100] (1 on a "
+                             "real flight)" % (time_scale,))
+        self.time_scale = float(time_scale)
         self.config = cfg
         self.session = _core.autopilot_session(cfg)
         self.transport = mavlink_transport(link)
@@ -228,7 +234,8 @@ class autopilot_link(gr.basic_block):
         self._thread = None
 
     def _now(self):
-        return time.monotonic()
+        # The link's clock: real time, or faster in a rehearsal paced at time_scale x.
+        return time.monotonic() * self.time_scale
 
     def handle_cmd(self, msg):
         try:
@@ -253,10 +260,10 @@ class autopilot_link(gr.basic_block):
 
     def _run(self):
         fd = self.transport.fileno()
-        offset = time.time() - time.monotonic()
+        t_start, wall_start = self._now(), time.time()
         while self._running:
             try:
-                ready, _, _ = select.select([fd], [], [], 0.01)
+                ready, _, _ = select.select([fd], [], [], max(0.001, 0.01 / self.time_scale))
             except (OSError, ValueError):
                 break
             data, addr = self.transport.recv() if ready else (b"", None)
@@ -292,7 +299,7 @@ class autopilot_link(gr.basic_block):
                 self.message_port_pub(pmt.intern("status"), pmt.to_pmt(s))
             if self.tlog is not None:
                 for when, frame in log:
-                    self.tlog.write(when + offset, frame)
+                    self.tlog.write(wall_start + (when - t_start) / self.time_scale, frame)
 
     def set_airspeed(self, airspeed_mps):
         """A new commanded airspeed (m/s; 0: the autopilot's own), sent when commanding."""

@@ -10,8 +10,10 @@ errors, and the rehearsal of a whole flight (rfseek-live --vehicle mavlink). Wai
 a condition with a deadline (live sockets and threads); no timing is asserted beyond the
 link's own one-second rule."""
 
+import json
 import math
 import os
+import shutil
 import socket
 import subprocess
 import sys
@@ -191,10 +193,63 @@ class qa_autopilot_link(gr_unittest.TestCase):
         self.assertEqual(len(frames), len(entries))  # every entry one whole, valid frame
         stamps = [t for t, _ in entries]
         self.assertEqual(stamps, sorted(stamps))
-        names = {(f.sysid, f.decode().name) for f in frames if f.known()}
-        for expected in ((1, "HEARTBEAT"), (1, "ATTITUDE"), (1, "COMMAND_ACK"),
-                         (1, "GLOBAL_POSITION_INT"), (1, "COMMAND_LONG")):
+        names = {(f.sysid, f.compid, f.decode().name) for f in frames if f.known()}
+        for expected in ((1, 1, "HEARTBEAT"), (1, 1, "ATTITUDE"), (1, 1, "COMMAND_ACK"),
+                         (1, 1, "GLOBAL_POSITION_INT"), (1, 191, "COMMAND_LONG"),
+                         (1, 191, "HEARTBEAT")):
             self.assertIn(expected, names)
+        self.check_tlog_with_node_mavlink(path, entries)
+
+    def check_tlog_with_node_mavlink(self, path, entries):
+        """Each entry of the log, time stamp and frame, read by node-mavlink's splitter
+        (which takes the 8 bytes before a frame as a .tlog time stamp), where node and
+        node-mavlink are installed. Entry by entry, and only entries whose time stamp
+        holds no magic byte (0xFD, 0xFE): node-mavlink's splitter looks for magic bytes
+        and takes one inside a stamp for a frame start; log readers that walk the
+        entries by their lengths (read_tlog, ground stations) do not."""
+        modules = os.path.join(os.environ.get("RFSEEK_BUILD_DIR", "build"), "node",
+                               "node_modules")
+        if shutil.which("node") is None or not os.path.isdir(
+                os.path.join(modules, "node-mavlink")):
+            print("node-mavlink not installed: the .tlog is not read by it here")
+            return
+        with open(path, "rb") as f:
+            data = f.read()
+        chunks, i = [], 0
+        for _, raw in entries:
+            chunks.append(data[i:i + 8 + len(raw)].hex())
+            i += 8 + len(raw)
+        self.assertEqual(i, len(data))
+        script = """
+const mav = require('node-mavlink');
+const chunks = JSON.parse(require('fs').readFileSync(0, 'utf8'));
+const out = [];
+(async () => {
+  for (const c of chunks) {
+    const s = new mav.MavLinkPacketSplitter();
+    const got = await new Promise(res => {
+      const ps = []; s.on('data', p => ps.push(p));
+      s.on('end', () => res(ps)); s.end(Buffer.from(c, 'hex')); s.resume(); });
+    out.push(got.map(p => [Number(p.timestamp), p.buffer.toString('hex')]));
+  }
+  console.log(JSON.stringify(out));
+})();
+"""
+        r = subprocess.run(["node", "-e", script], input=json.dumps(chunks),
+                           capture_output=True, text=True,
+                           env=dict(os.environ, NODE_PATH=modules), timeout=120)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        got = json.loads(r.stdout)
+        checked = 0
+        for found, chunk, (t, raw) in zip(got, chunks, entries):
+            stamp = bytes.fromhex(chunk[:16])
+            if 0xFD in stamp or 0xFE in stamp:
+                continue  # node-mavlink takes a magic byte in the stamp for a frame start
+            checked += 1
+            self.assertEqual(len(found), 1, "entry not read as one frame")
+            self.assertEqual(found[0][1], raw.hex())
+            self.assertEqual(found[0][0], int(t * 1e6) // 1000)  # node-mavlink: ms
+        self.assertGreater(checked, len(entries) // 2)
 
     def test_bad_parameters(self):
         for kw, word in (({"link": "tcp:1.2.3.4:5"}, "link"),

@@ -38,14 +38,21 @@ _TYPES = {"ardupilot_plane": (1, 3), "ardupilot_copter": (2, 3), "px4": (2, 12)}
 
 class sim_autopilot(gr.basic_block):
     """Message block: "state" in (channel_source) and "cmd" out (to channel_source), with
-    a MAVLink autopilot on `link` (see autopilot_link for the transport syntax)."""
+    a MAVLink autopilot on `link` (see autopilot_link for the transport syntax).
+    time_scale: its telemetry rates run that many times faster, for a rehearsal paced
+    at that speed-up (give autopilot_link the same)."""
 
     def __init__(self, link="udpout:127.0.0.1:14550", family="ardupilot_plane", mode="",
-                 armed=True, airspeed_mps=10.0, ref_lat_deg=47.0, ref_lon_deg=8.0):
+                 armed=True, airspeed_mps=10.0, ref_lat_deg=47.0, ref_lon_deg=8.0,
+                 time_scale=1.0):
         gr.basic_block.__init__(self, name="sim_autopilot", in_sig=None, out_sig=None)
         if family not in _TYPES:
             raise ValueError("sim_autopilot: family = %r: must be ardupilot_plane, "
                              "ardupilot_copter or px4" % (family,))
+        if not (isinstance(time_scale, (int, float)) and 1.0 <= time_scale <= 100.0):
+            raise ValueError("sim_autopilot: time_scale = %r: must be in [1, 100]"
+                             % (time_scale,))
+        self.time_scale = float(time_scale)
         self.family = family
         self.mode_name = mode or _core.autopilot_default_mode(family)
         self.custom_mode = _core.autopilot_mode_number(family, self.mode_name)
@@ -158,7 +165,7 @@ class sim_autopilot(gr.basic_block):
 
     def _telemetry(self, k):
         """Messages due at tick k (100 Hz)."""
-        now_ms = int((time.monotonic() - self._t0) * 1000) % 4294967296
+        now_ms = int((time.monotonic() - self._t0) * 1000 * self.time_scale) % 4294967296
         with self._lock:
             st = self._state
         vtype, autopilot = _TYPES[self.family]
@@ -229,7 +236,7 @@ class sim_autopilot(gr.basic_block):
             if time.monotonic() >= next_tick:
                 self._telemetry(k)
                 k += 1
-                next_tick += 0.01
+                next_tick += 0.01 / self.time_scale
 
     def stop(self):
         self._running = False

@@ -251,6 +251,45 @@ const out = [];
             self.assertEqual(found[0][0], int(t * 1e6) // 1000)  # node-mavlink: ms
         self.assertGreater(checked, len(entries) // 2)
 
+    def test_serial_transport_on_a_pseudo_terminal(self):
+        # A pty stands in for a telemetry radio: the link opens its slave side as a
+        # serial device; the "autopilot" reads and writes the master side.
+        import pty
+        master, slave = pty.openpty()
+        link = rfseek.autopilot_link("serial:%s:57600" % os.ttyname(slave))
+        tb = gr.top_block()
+        store = blocks.message_debug()
+        tb.msg_connect(link, "nav", store, "store")
+        tb.start()
+        try:
+            hb = mavlink.message("HEARTBEAT")
+            hb.set("base_mode", 129)
+            hb.set("custom_mode", 15)
+            att = mavlink.message("ATTITUDE")
+            att.set("yaw", 0.0)
+            parser = mavlink.parser()
+            ours = []
+            os.set_blocking(master, False)
+            for k in range(30):
+                os.write(master, mavlink.encode(hb if k % 10 == 0 else att,
+                                                mavlink.header(k, 1, 1)))
+                wait_until(lambda: False, timeout=0.05)
+                try:
+                    ours += parser.push(os.read(master, 4096))
+                except BlockingIOError:
+                    pass
+            self.assertGreaterEqual(link.status()["heartbeats"], 3)
+            self.assertTrue(wait_until(lambda: store.num_messages() >= 20))
+            self.assertAlmostEqual(pmt.to_python(store.get_message(0))["heading"],
+                                   math.pi / 2, places=6)
+            self.assertIn("HEARTBEAT", [f.decode().name for f in ours if f.known()])
+        finally:
+            tb.stop()
+            tb.wait()
+            link.close()
+            os.close(master)
+            os.close(slave)
+
     def test_bad_parameters(self):
         for kw, word in (({"link": "tcp:1.2.3.4:5"}, "link"),
                          ({"link": "udpin:127.0.0.1:70000"}, "port"),

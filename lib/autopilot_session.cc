@@ -25,6 +25,8 @@ constexpr std::uint8_t MAV_MODE_FLAG_CUSTOM_MODE_ENABLED = 1;
 constexpr std::uint8_t MAV_MODE_FLAG_SAFETY_ARMED = 128;
 constexpr std::uint16_t MAV_CMD_DO_CHANGE_SPEED = 178;
 constexpr std::uint16_t MAV_CMD_GUIDED_CHANGE_HEADING = 43002;
+constexpr std::uint16_t MAV_CMD_SET_MESSAGE_INTERVAL = 511;
+constexpr std::uint32_t MSG_ATTITUDE = 30, MSG_VFR_HUD = 74;
 constexpr float HEADING_TYPE_HEADING = 1;
 constexpr float SPEED_TYPE_AIRSPEED = 0;
 constexpr std::uint8_t MAV_RESULT_ACCEPTED = 0, MAV_RESULT_TEMPORARILY_REJECTED = 1,
@@ -50,6 +52,14 @@ double compass_deg(double theta)
     return d >= 360.0 ? 0.0 : d;
 }
 
+// The same, as the float MAVLink carries: just below 360 would round to 360.0f, which
+// autopilots refuse (the range is [0, 360)).
+float compass_deg_f(double theta)
+{
+    const float f = static_cast<float>(compass_deg(theta));
+    return f >= 360.0f ? 0.0f : f;
+}
+
 std::string fmt(double x)
 {
     std::ostringstream s;
@@ -58,116 +68,7 @@ std::string fmt(double x)
     return s.str();
 }
 
-struct mode_entry {
-    autopilot_family family;
-    const char* name;
-    std::uint32_t number;
-};
-
-const std::vector<mode_entry>& mode_table()
-{
-    using af = autopilot_family;
-    static const std::vector<mode_entry> table = {
-#define RFSEEK_MAVLINK_MODE(family, name, value) { af::family, name, value },
-#include "mavlink_tables.inc"
-#undef RFSEEK_MAVLINK_MODE
-        // PX4: custom_mode = main mode << 16 (sub mode << 24), px4_custom_mode.h.
-        { af::px4, "MANUAL", 1u << 16 },     { af::px4, "ALTCTL", 2u << 16 },
-        { af::px4, "POSCTL", 3u << 16 },     { af::px4, "OFFBOARD", 6u << 16 },
-        { af::px4, "STABILIZED", 7u << 16 },
-    };
-    return table;
-}
-
 } // namespace
-
-autopilot_family autopilot_family_from_string(const std::string& name)
-{
-    if (name == "ardupilot_plane" || name == "plane")
-        return autopilot_family::ardupilot_plane;
-    if (name == "ardupilot_copter" || name == "copter")
-        return autopilot_family::ardupilot_copter;
-    if (name == "px4")
-        return autopilot_family::px4;
-    throw std::invalid_argument("autopilot family '" + name +
-                                "': must be ardupilot_plane, ardupilot_copter or px4");
-}
-
-std::string to_string(autopilot_family f)
-{
-    switch (f) {
-    case autopilot_family::ardupilot_plane:
-        return "ardupilot_plane";
-    case autopilot_family::ardupilot_copter:
-        return "ardupilot_copter";
-    default:
-        return "px4";
-    }
-}
-
-std::string autopilot_default_mode(autopilot_family f)
-{
-    switch (f) {
-    case autopilot_family::ardupilot_plane:
-        return "GUIDED";
-    case autopilot_family::ardupilot_copter:
-        return "GUIDED_NOGPS";
-    default:
-        return "OFFBOARD";
-    }
-}
-
-std::uint32_t autopilot_mode_number(autopilot_family f, const std::string& mode)
-{
-    std::string known;
-    for (const mode_entry& e : mode_table()) {
-        if (e.family != f)
-            continue;
-        if (mode == e.name)
-            return e.number;
-        known += (known.empty() ? "" : ", ") + std::string(e.name);
-    }
-    throw std::invalid_argument("mode '" + mode + "' is not a " + to_string(f) +
-                                " mode: one of " + known);
-}
-
-void autopilot_config::validate() const
-{
-    auto positive = [](const char* name, double v, double hi) {
-        if (!(v > 0 && v <= hi))
-            throw std::invalid_argument(std::string("autopilot_link: ") + name + " = " +
-                                        fmt(v) + ": must be in (0, " + fmt(hi) + "]");
-    };
-    positive("heartbeat_period_s", heartbeat_period_s, 10);
-    positive("link_timeout_s", link_timeout_s, 10);
-    positive("heartbeat_timeout_s", heartbeat_timeout_s, 30);
-    positive("ack_timeout_s", ack_timeout_s, 10);
-    positive("command_min_period_s", command_min_period_s, 10);
-    positive("setpoint_period_s", setpoint_period_s, 0.5); // PX4 needs >= 2 Hz
-    if (retries < 0 || retries > 10)
-        throw std::invalid_argument("autopilot_link: retries = " +
-                                    std::to_string(retries) + ": must be in [0, 10]");
-    if (!(heading_deadband_deg >= 0 && heading_deadband_deg <= 10))
-        throw std::invalid_argument("autopilot_link: heading_deadband_deg = " +
-                                    fmt(heading_deadband_deg) + ": must be in [0, 10]");
-    if (!(airspeed_mps >= 0 && airspeed_mps <= 100))
-        throw std::invalid_argument(
-            "autopilot_link: airspeed_mps = " + fmt(airspeed_mps) +
-            ": must be in [0, 100] (0: the autopilot's own)");
-    if (!(heading_rate_dps >= 0 && heading_rate_dps <= 180))
-        throw std::invalid_argument("autopilot_link: heading_rate_dps = " +
-                                    fmt(heading_rate_dps) + ": must be in [0, 180]");
-    if (!(pitch_deg >= 0 && pitch_deg <= 30))
-        throw std::invalid_argument("autopilot_link: pitch_deg = " + fmt(pitch_deg) +
-                                    ": must be in [0, 30]");
-    if (!(thrust >= 0 && thrust <= 1))
-        throw std::invalid_argument("autopilot_link: thrust = " + fmt(thrust) +
-                                    ": must be in [0, 1]");
-    if (target_system == 0 || own_system == 0 || own_component == 0)
-        throw std::invalid_argument("autopilot_link: system and component ids must be in "
-                                    "[1, 255] (0 is the broadcast address)");
-    autopilot_mode_number(family, mode.empty() ? autopilot_default_mode(family) : mode);
-}
 
 autopilot_session::autopilot_session(const autopilot_config& config) : d_cfg(config)
 {
@@ -237,13 +138,24 @@ void autopilot_session::on_heartbeat(const mavlink::message& m, double t)
                        d_status.custom_mode == d_mode_number;
 }
 
+std::uint16_t autopilot_session::command_of(const pending& p)
+{
+    return static_cast<std::uint16_t>(p.msg.get_uint("command"));
+}
+
 void autopilot_session::on_ack(const mavlink::message& m, double t)
 {
+    // An ack addressed to someone else (a ground station on the same link) is not ours.
+    const auto to_sys = m.get_uint("target_system"),
+               to_comp = m.get_uint("target_component");
+    if ((to_sys != 0 && to_sys != d_cfg.own_system) ||
+        (to_comp != 0 && to_comp != d_cfg.own_component))
+        return;
     const auto cmd = static_cast<std::uint16_t>(m.get_uint("command"));
     const int result = static_cast<int>(m.get_uint("result"));
     const auto it =
         std::find_if(d_pending.begin(), d_pending.end(), [&](const pending& p) {
-            return p.msg.get_uint("command") == cmd;
+            return p.sends > 0 && command_of(p) == cmd;
         });
     if (it == d_pending.end())
         return; // an ack of something not ours, or already settled
@@ -251,27 +163,64 @@ void autopilot_session::on_ack(const mavlink::message& m, double t)
         ++d_status.commands_acked;
         d_pending.erase(it);
     } else if (result == MAV_RESULT_IN_PROGRESS) {
-        it->sent_at = t; // wait for the final answer
+        it->sent_at = t + 2.0; // wait (up to 2 s more) for the final answer, not a retry
     } else if (result != MAV_RESULT_TEMPORARILY_REJECTED) {
-        ++d_status.commands_failed;
-        d_status.reason =
-            "command " + std::to_string(cmd) + " refused: " + result_name(result);
         d_pending.erase(it);
+        settle_failure(cmd, t, std::string("refused: ") + result_name(result));
     } // TEMPORARILY_REJECTED: sent again at its timeout
+}
+
+void autopilot_session::settle_failure(std::uint16_t cmd,
+                                       double t,
+                                       const std::string& why)
+{
+    ++d_status.commands_failed;
+    d_status.reason = "command " + std::to_string(cmd) + ": " + why;
+    // Sent again, a second later at the earliest, even if the controller's value has not
+    // changed: a steady heading refused once must not stay unsent.
+    if (cmd == MAV_CMD_GUIDED_CHANGE_HEADING) {
+        d_heading_sent.reset();
+        d_heading_backoff = t + 1.0;
+    } else if (cmd == MAV_CMD_DO_CHANGE_SPEED) {
+        d_speed_sent = false;
+        d_speed_backoff = t + 1.0;
+    }
+}
+
+void autopilot_session::drop_pending(bool keep_link_requests)
+{
+    d_pending.erase(std::remove_if(d_pending.begin(),
+                                   d_pending.end(),
+                                   [&](const pending& p) {
+                                       return !keep_link_requests ||
+                                              command_of(p) !=
+                                                  MAV_CMD_SET_MESSAGE_INTERVAL;
+                                   }),
+                    d_pending.end());
 }
 
 void autopilot_session::set_state(const std::string& state, const std::string& reason)
 {
     const bool was_commanding = commanding();
+    const bool was_linked = linked();
     d_status.state = state;
-    if (state != "commanding" || was_commanding == false)
+    if (state != "commanding" || !was_commanding)
         d_status.reason = reason;
     if (was_commanding && state != "commanding") {
-        // Stop: nothing pending is retried, and on resumption everything is sent anew.
-        d_pending.clear();
+        // Stop: no heading or speed is retried, and on resumption both are sent anew.
+        drop_pending(true);
         d_heading_sent.reset();
         d_speed_sent = false;
     }
+    if (was_linked && !linked()) {
+        drop_pending(false);
+        d_streams_requested = false; // asked again when the link comes back
+    }
+}
+
+bool autopilot_session::linked() const
+{
+    return d_status.state == "holding" || d_status.state == "commanding";
 }
 
 void autopilot_session::update_state(double t)
@@ -292,9 +241,18 @@ void autopilot_session::update_state(double t)
         set_state("holding", "not armed");
     else if (!d_status.in_mode)
         set_state("holding",
-                  "mode " + std::to_string(d_status.custom_mode) + ", not " + d_cfg.mode);
+                  "mode " + std::to_string(d_status.custom_mode) + ", not " + d_cfg.mode +
+                      (d_cfg.family == autopilot_family::px4
+                           ? " (setpoints streamed so that OFFBOARD can be entered)"
+                           : ""));
+    else if (d_done)
+        set_state("holding", "the controller is done");
     else if (!d_heading)
         set_state("holding", "no heading command from the controller yet");
+    else if (t - d_last_command > d_cfg.command_timeout_s)
+        set_state("holding",
+                  "no command from the controller for more than " +
+                      fmt(d_cfg.command_timeout_s) + " s (command_timeout_s)");
     else
         set_state("commanding", "");
     report_status();
@@ -315,6 +273,13 @@ void autopilot_session::set_airspeed(double airspeed_mps)
     c.validate();
     d_cfg.airspeed_mps = airspeed_mps;
     d_speed_sent = false;
+    d_speed_backoff = -1e300;
+}
+
+void autopilot_session::finish(double t)
+{
+    d_done = true;
+    update_state(t);
 }
 
 void autopilot_session::command(double heading_rad, double t)
@@ -322,6 +287,7 @@ void autopilot_session::command(double heading_rad, double t)
     if (!std::isfinite(heading_rad))
         return;
     d_heading = wrap_remainder(heading_rad);
+    d_last_command = t;
     update_state(t);
 }
 
@@ -337,7 +303,11 @@ void autopilot_session::send(const mavlink::message& m,
         s.link_id = d_cfg.signing_link_id;
         // 10 us units; strictly increasing on this stream.
         const double units = std::max(0.0, (t + d_cfg.signing_clock_offset_s) * 1e5);
-        d_sign_time = std::max(d_sign_time + 1, static_cast<std::uint64_t>(units));
+        // Never behind the autopilot's own clock (a computer without RTC or NTP would
+        // otherwise send timestamps it refuses as replays).
+        d_sign_time = std::max({ d_sign_time + 1,
+                                 static_cast<std::uint64_t>(units),
+                                 d_parser.newest_timestamp() + 1 });
         frame = mavlink::encode(m, h, &s, d_sign_time);
     } else {
         frame = mavlink::encode(m, h);
@@ -346,23 +316,45 @@ void autopilot_session::send(const mavlink::message& m,
     out.push_back(std::move(frame));
 }
 
+void autopilot_session::queue_message(mavlink::message m)
+{
+    m.set("target_system", d_cfg.target_system);
+    m.set("target_component", d_cfg.target_component);
+    // A newer command of the same kind replaces one still awaiting its ack (message
+    // interval requests: of the same message).
+    const auto cmd = static_cast<std::uint16_t>(m.get_uint("command"));
+    const double key = m.get("param1");
+    d_pending.erase(std::remove_if(d_pending.begin(),
+                                   d_pending.end(),
+                                   [&](const pending& p) {
+                                       return command_of(p) == cmd &&
+                                              (cmd != MAV_CMD_SET_MESSAGE_INTERVAL ||
+                                               p.msg.get("param1") == key);
+                                   }),
+                    d_pending.end());
+    d_pending.push_back({ m, 0.0, 0 });
+}
+
 void autopilot_session::queue_command(std::uint16_t cmd,
                                       const std::array<float, 7>& params)
 {
     mavlink::message m("COMMAND_LONG");
-    m.set("target_system", d_cfg.target_system);
-    m.set("target_component", d_cfg.target_component);
     m.set("command", cmd);
     for (int i = 0; i < 7; ++i)
         m.set("param" + std::to_string(i + 1), params[i]);
-    // A newer command of the same kind replaces one still awaiting its ack.
-    d_pending.erase(std::remove_if(d_pending.begin(),
-                                   d_pending.end(),
-                                   [&](const pending& p) {
-                                       return p.msg.get_uint("command") == cmd;
-                                   }),
-                    d_pending.end());
-    d_pending.push_back({ m, 0.0, 0 });
+    queue_message(m);
+}
+
+void autopilot_session::queue_command_int(std::uint16_t cmd,
+                                          const std::array<float, 4>& params)
+{
+    // COMMAND_INT: ArduPlane handles the GUIDED slew commands only in this form before
+    // 4.5 (and in both since). x, y, z unused; frame 0.
+    mavlink::message m("COMMAND_INT");
+    m.set("command", cmd);
+    for (int i = 0; i < 4; ++i)
+        m.set("param" + std::to_string(i + 1), params[i]);
+    queue_message(m);
 }
 
 mavlink::message autopilot_session::setpoint() const
@@ -385,6 +377,83 @@ mavlink::message autopilot_session::setpoint() const
     return m;
 }
 
+bool autopilot_session::streaming() const
+{
+    // The setpoint stream of the copters: while commanding, and for PX4 also while in
+    // another mode, so that OFFBOARD can be entered (PX4 refuses it without a stream
+    // and ignores the setpoints outside it). Never without a fresh command.
+    if (d_cfg.family == autopilot_family::ardupilot_plane)
+        return false;
+    if (commanding())
+        return true;
+    return d_cfg.family == autopilot_family::px4 && d_status.state == "holding" &&
+           !d_status.in_mode && !d_done && d_heading && d_status.armed;
+}
+
+void autopilot_session::plane_commands(double t)
+{
+    if (d_cfg.airspeed_mps > 0 && !d_speed_sent && t >= d_speed_backoff) {
+        queue_command(MAV_CMD_DO_CHANGE_SPEED,
+                      { SPEED_TYPE_AIRSPEED,
+                        static_cast<float>(d_cfg.airspeed_mps),
+                        -1.0f,
+                        0,
+                        0,
+                        0,
+                        0 });
+        d_speed_sent = true;
+        d_speed_commanded = true;
+    } else if (d_cfg.airspeed_mps == 0 && d_speed_commanded && !d_speed_sent &&
+               t >= d_speed_backoff) {
+        // Back to the autopilot's own speed: -2 is "the default vehicle speed".
+        queue_command(MAV_CMD_DO_CHANGE_SPEED,
+                      { SPEED_TYPE_AIRSPEED, -2.0f, -1.0f, 0, 0, 0, 0 });
+        d_speed_sent = true;
+        d_speed_commanded = false;
+    }
+    const double deadband = d_cfg.heading_deadband_deg * M_PI / 180.0;
+    if ((!d_heading_sent ||
+         std::abs(wrap_remainder(*d_heading - *d_heading_sent)) > deadband) &&
+        t - d_last_heading_sent_at >= d_cfg.command_min_period_s &&
+        t >= d_heading_backoff) {
+        queue_command_int(MAV_CMD_GUIDED_CHANGE_HEADING,
+                          { HEADING_TYPE_HEADING,
+                            compass_deg_f(*d_heading),
+                            static_cast<float>(d_cfg.heading_accel_mps2),
+                            0 });
+        d_heading_sent = d_heading;
+        d_last_heading_sent_at = t;
+    }
+}
+
+void autopilot_session::send_pending(double t,
+                                     std::vector<std::vector<std::uint8_t>>& out)
+{
+    // First sends, and retries of those unanswered.
+    for (auto it = d_pending.begin(); it != d_pending.end();) {
+        if (it->sends > 0 && t - it->sent_at < d_cfg.ack_timeout_s) {
+            ++it;
+            continue;
+        }
+        if (it->sends > d_cfg.retries) {
+            const std::uint16_t cmd = command_of(*it);
+            const int sends = it->sends;
+            it = d_pending.erase(it);
+            settle_failure(cmd, t, "no ack after " + std::to_string(sends) + " sends");
+            continue;
+        }
+        if (it->sends > 0)
+            ++d_status.retries;
+        if (it->msg.def().name == "COMMAND_LONG")
+            it->msg.set("confirmation", it->sends); // 0 first, then 1, 2, ...
+        ++it->sends;
+        it->sent_at = t;
+        ++d_status.commands_sent;
+        send(it->msg, t, out);
+        ++it;
+    }
+}
+
 std::vector<std::vector<std::uint8_t>> autopilot_session::poll(double t)
 {
     std::vector<std::vector<std::uint8_t>> out;
@@ -398,63 +467,24 @@ std::vector<std::vector<std::uint8_t>> autopilot_session::poll(double t)
         send(hb, t, out);
         d_last_sent_heartbeat = t;
     }
-    if (!commanding())
-        return out;
-    if (d_cfg.family == autopilot_family::ardupilot_plane) {
-        if (d_cfg.airspeed_mps > 0 && !d_speed_sent) {
-            queue_command(MAV_CMD_DO_CHANGE_SPEED,
-                          { SPEED_TYPE_AIRSPEED,
-                            static_cast<float>(d_cfg.airspeed_mps),
-                            -1.0f,
-                            0,
-                            0,
-                            0,
-                            0 });
-            d_speed_sent = true;
-        }
-        const double deadband = d_cfg.heading_deadband_deg * M_PI / 180.0;
-        if ((!d_heading_sent ||
-             std::abs(wrap_remainder(*d_heading - *d_heading_sent)) > deadband) &&
-            t - d_last_heading_sent_at >= d_cfg.command_min_period_s) {
-            queue_command(MAV_CMD_GUIDED_CHANGE_HEADING,
-                          { HEADING_TYPE_HEADING,
-                            static_cast<float>(compass_deg(*d_heading)),
-                            static_cast<float>(d_cfg.heading_rate_dps),
-                            0,
-                            0,
-                            0,
-                            0 });
-            d_heading_sent = d_heading;
-            d_last_heading_sent_at = t;
-        }
-    } else if (t - d_last_setpoint >= d_cfg.setpoint_period_s) {
+    if (linked() && d_cfg.request_streams && !d_streams_requested) {
+        for (const auto& [id, us] :
+             { std::pair<std::uint32_t, float>{ MSG_ATTITUDE, 50000 },
+               { MSG_VFR_HUD, 250000 } })
+            queue_command(MAV_CMD_SET_MESSAGE_INTERVAL,
+                          { static_cast<float>(id), us, 0, 0, 0, 0, 0 });
+        d_streams_requested = true;
+    }
+    if (commanding() && d_cfg.family == autopilot_family::ardupilot_plane)
+        plane_commands(t);
+    if (streaming() && t - d_last_setpoint >= d_cfg.setpoint_period_s) {
         mavlink::message m = setpoint();
         m.set("time_boot_ms", std::fmod(std::max(t, 0.0) * 1000.0, 4294967296.0));
         send(m, t, out);
         d_last_setpoint = t;
     }
-    // Commands: first sends, and retries of those unanswered.
-    for (auto it = d_pending.begin(); it != d_pending.end();) {
-        if (it->sends > 0 && t - it->sent_at < d_cfg.ack_timeout_s) {
-            ++it;
-            continue;
-        }
-        if (it->sends > d_cfg.retries) {
-            ++d_status.commands_failed;
-            d_status.reason = "command " + std::to_string(it->msg.get_uint("command")) +
-                              ": no ack after " + std::to_string(it->sends) + " sends";
-            it = d_pending.erase(it);
-            continue;
-        }
-        if (it->sends > 0)
-            ++d_status.retries;
-        it->msg.set("confirmation", it->sends); // 0 first, then 1, 2, ...
-        ++it->sends;
-        it->sent_at = t;
-        ++d_status.commands_sent;
-        send(it->msg, t, out);
-        ++it;
-    }
+    if (linked())
+        send_pending(t, out);
     report_status();
     return out;
 }

@@ -258,11 +258,18 @@ void message::set(const std::string& field, double v, std::size_t index)
         const double bits = 8.0 * size_of(f.type) - 1.0;
         const double hi = std::ldexp(1.0, static_cast<int>(bits)) - 1.0;
         const double c = std::isnan(v) ? 0.0 : std::clamp(std::trunc(v), -hi - 1.0, hi);
-        set_int(field, static_cast<std::int64_t>(c), index);
+        // For 64 bits hi rounds up to 2^63, which no int64 holds: saturate exactly.
+        set_int(field,
+                c >= 9223372036854775808.0 ? std::numeric_limits<std::int64_t>::max()
+                                           : static_cast<std::int64_t>(c),
+                index);
     } else {
         const double hi = std::ldexp(1.0, static_cast<int>(8 * size_of(f.type))) - 1.0;
         const double c = std::isnan(v) ? 0.0 : std::clamp(std::trunc(v), 0.0, hi);
-        set_uint(field, static_cast<std::uint64_t>(c), index);
+        set_uint(field,
+                 c >= 18446744073709551616.0 ? std::numeric_limits<std::uint64_t>::max()
+                                             : static_cast<std::uint64_t>(c),
+                 index);
     }
 }
 

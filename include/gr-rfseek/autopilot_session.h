@@ -67,9 +67,15 @@ struct RFSEEK_API autopilot_config {
     double heading_deadband_deg = 0.5; //!< plane: a heading this close is not re-sent
     double command_min_period_s = 0.2; //!< plane: at most 5 heading commands a second
     double setpoint_period_s = 0.1;    //!< copter, PX4: the setpoint stream (10 Hz)
-    double airspeed_mps = 0;           //!< commanded airspeed; 0: left to the autopilot
-    double heading_rate_dps =
-        0;                //!< plane: GUIDED_CHANGE_HEADING param 3 (0: its default)
+    double airspeed_mps = 0; //!< commanded airspeed; 0: the autopilot's own (cruise)
+    //! Without a controller command for this long the link stops commanding (holding).
+    double command_timeout_s = 2.0;
+    //! Ask the autopilot for ATTITUDE at 20 Hz and VFR_HUD at 4 Hz when the link comes
+    //! up (MAV_CMD_SET_MESSAGE_INTERVAL).
+    bool request_streams = true;
+    //! plane: MAV_CMD_GUIDED_CHANGE_HEADING param 3, the largest centripetal
+    //! acceleration of the heading change (m/s^2; ArduPlane banks up to atan(a / g)).
+    double heading_accel_mps2 = 6.0;
     double pitch_deg = 5; //!< copter, PX4: forward pitch of the setpoint
     double thrust = 0.5;  //!< copter, PX4: setpoint thrust
     //! Message signing: sign what we send and require signed frames from the link.
@@ -118,8 +124,11 @@ public:
     void receive(const std::uint8_t* data, std::size_t n, double t);
     //! The controller's heading command (module convention, radians).
     void command(double heading_rad, double t);
-    //! A new commanded airspeed (m/s, [0, 100]; 0: the autopilot's own), sent anew.
+    //! A new commanded airspeed (m/s, [0, 100]; 0: back to the autopilot's own), sent
+    //! anew.
     void set_airspeed(double airspeed_mps);
+    //! The controller is done (arrived, located, or gave up): stop commanding for good.
+    void finish(double t);
     //! Advance to time t: heartbeats, commands, retries, setpoints and link checks.
     //! Returns the frames to send now.
     std::vector<std::vector<std::uint8_t>> poll(double t);
@@ -138,10 +147,19 @@ public:
 
 private:
     struct pending {
-        mavlink::message msg;
+        mavlink::message msg; //!< COMMAND_LONG or COMMAND_INT
         double sent_at;
         int sends;
     };
+    static std::uint16_t command_of(const pending& p);
+    bool linked() const;
+    bool streaming() const;
+    void drop_pending(bool keep_link_requests);
+    void queue_command_int(std::uint16_t cmd, const std::array<float, 4>& params);
+    void queue_message(mavlink::message m);
+    void settle_failure(std::uint16_t cmd, double t, const std::string& why);
+    void plane_commands(double t);
+    void send_pending(double t, std::vector<std::vector<std::uint8_t>>& out);
     void handle(const mavlink::frame& f, double t);
     void on_heartbeat(const mavlink::message& m, double t);
     void on_ack(const mavlink::message& m, double t);
@@ -166,6 +184,11 @@ private:
     std::optional<double> d_heading;      //!< the controller's last command
     std::optional<double> d_heading_sent; //!< plane: last heading commanded
     bool d_speed_sent = false;
+    bool d_speed_commanded = false; //!< a speed of ours is in force on the autopilot
+    bool d_done = false;            //!< finish() was called
+    double d_last_command = -1e300; //!< when the controller last commanded
+    double d_heading_backoff = -1e300, d_speed_backoff = -1e300; //!< after a failure
+    bool d_streams_requested = false;
     std::vector<pending> d_pending; //!< COMMAND_LONGs awaiting acks
     std::uint64_t d_sign_time = 0;  //!< last signing timestamp used
     double d_airspeed = -1;

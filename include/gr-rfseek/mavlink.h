@@ -184,6 +184,8 @@ public:
     //! Feed bytes; complete, valid frames are appended to `out`.
     void push(const std::uint8_t* data, std::size_t n, std::vector<frame>& out);
     const counters& stats() const { return d_stats; }
+    //! The newest signing timestamp accepted (0: none yet).
+    std::uint64_t newest_timestamp() const { return d_newest; }
 
 private:
     bool take_one(std::vector<frame>& out);

@@ -89,6 +89,18 @@ std::vector<mav::message> of(const std::vector<mav::message>& msgs,
     return out;
 }
 
+// The commands among them (COMMAND_LONG and COMMAND_INT), without the link's requests
+// for message streams (MAV_CMD_SET_MESSAGE_INTERVAL).
+std::vector<mav::message> commands(const std::vector<mav::message>& msgs)
+{
+    std::vector<mav::message> out;
+    for (const auto& m : msgs)
+        if ((m.def().name == "COMMAND_LONG" || m.def().name == "COMMAND_INT") &&
+            m.get_uint("command") != 511)
+            out.push_back(m);
+    return out;
+}
+
 autopilot_config plane_config()
 {
     autopilot_config c;
@@ -134,17 +146,17 @@ TEST(autopilot_session, commands_only_armed_in_the_named_mode)
     EXPECT_EQ(s.status().state, "connecting");
 
     feed(s, ap.heartbeat(CUSTOM, 15), 0.1); // GUIDED, disarmed
-    EXPECT_TRUE(of(decode_all(s.poll(0.1)), "COMMAND_LONG").empty());
+    EXPECT_TRUE(commands(decode_all(s.poll(0.1))).empty());
     EXPECT_EQ(s.status().state, "holding");
     EXPECT_EQ(s.status().reason, "not armed");
 
     feed(s, ap.heartbeat(CUSTOM | ARMED, 5), 0.2); // armed, FBWA
-    EXPECT_TRUE(of(decode_all(s.poll(0.2)), "COMMAND_LONG").empty());
+    EXPECT_TRUE(commands(decode_all(s.poll(0.2))).empty());
     EXPECT_EQ(s.status().state, "holding");
     EXPECT_NE(s.status().reason.find("not GUIDED"), std::string::npos);
 
     feed(s, ap.heartbeat(CUSTOM | ARMED, 15), 0.3); // armed, GUIDED
-    const auto cmds = of(decode_all(s.poll(0.3)), "COMMAND_LONG");
+    const auto cmds = commands(decode_all(s.poll(0.3)));
     EXPECT_EQ(s.status().state, "commanding");
     ASSERT_EQ(cmds.size(), 2u);
     EXPECT_EQ(cmds[0].get_uint("command"), 178u); // DO_CHANGE_SPEED
@@ -161,7 +173,7 @@ TEST(autopilot_session, commands_only_armed_in_the_named_mode)
     feed(s, ap.ack(43002, 0), 0.35);
     feed(s, ap.heartbeat(CUSTOM, 15), 0.4);
     s.command(1.0, 0.4);
-    EXPECT_TRUE(of(decode_all(s.poll(0.5)), "COMMAND_LONG").empty());
+    EXPECT_TRUE(commands(decode_all(s.poll(0.5))).empty());
     EXPECT_EQ(s.status().reason, "not armed");
     const auto statuses = s.take_status();
     ASSERT_GE(statuses.size(), 4u);
@@ -176,7 +188,7 @@ TEST(autopilot_session, heading_commands_follow_the_controller)
     fake_autopilot ap;
     feed(s, ap.heartbeat(CUSTOM | ARMED, 15), 0.0);
     s.command(M_PI / 2, 0.0); // north
-    auto cmds = of(decode_all(s.poll(0.0)), "COMMAND_LONG");
+    auto cmds = commands(decode_all(s.poll(0.0)));
     ASSERT_EQ(cmds.size(), 1u); // no airspeed set: no DO_CHANGE_SPEED
     EXPECT_FLOAT_EQ(cmds[0].get("param2"), 0.0);
     feed(s, ap.ack(43002, 0), 0.05);
@@ -184,12 +196,12 @@ TEST(autopilot_session, heading_commands_follow_the_controller)
     // command_min_period_s.
     feed(s, ap.attitude(0), 0.1);
     s.command(M_PI / 2 - 0.5 * M_PI / 180, 0.1);
-    EXPECT_TRUE(of(decode_all(s.poll(0.1)), "COMMAND_LONG").empty());
+    EXPECT_TRUE(commands(decode_all(s.poll(0.1))).empty());
     s.command(M_PI / 2 - 20 * M_PI / 180, 0.15); // 20 deg right: compass 20
     feed(s, ap.attitude(0), 0.15);
-    EXPECT_TRUE(of(decode_all(s.poll(0.15)), "COMMAND_LONG").empty());
+    EXPECT_TRUE(commands(decode_all(s.poll(0.15))).empty());
     feed(s, ap.attitude(0), 0.2);
-    cmds = of(decode_all(s.poll(0.2)), "COMMAND_LONG");
+    cmds = commands(decode_all(s.poll(0.2)));
     ASSERT_EQ(cmds.size(), 1u);
     EXPECT_NEAR(cmds[0].get("param2"), 20.0, 1e-4);
 }
@@ -199,55 +211,64 @@ TEST(autopilot_session, unanswered_commands_are_retried_then_fail)
     autopilot_config c;
     c.ack_timeout_s = 0.3;
     c.retries = 3;
+    c.request_streams = false; // only the heading awaits an ack here
     autopilot_session s(c);
     fake_autopilot ap;
     s.command(0.0, 0.0);
     std::vector<double> sent_at;
-    std::vector<std::uint64_t> confirmations;
-    for (int k = 0; k <= 200; ++k) {
+    for (int k = 0; k <= 250; ++k) {
         const double t = 0.01 * k;
-        if (k % 5 == 0) // telemetry at 20 Hz, heartbeats at 1 Hz
+        s.command(0.0, t); // the controller, every slot
+        if (k % 5 == 0)    // telemetry at 20 Hz, heartbeats at 1 Hz
             feed(
                 s, k % 100 == 0 ? ap.heartbeat(CUSTOM | ARMED, 15) : ap.attitude(1.0), t);
-        for (const auto& m : of(decode_all(s.poll(t)), "COMMAND_LONG")) {
+        for (const auto& m : commands(decode_all(s.poll(t)))) {
+            EXPECT_EQ(m.def().name, "COMMAND_INT"); // ArduPlane's slew commands
+            EXPECT_EQ(m.get_uint("command"), 43002u);
             sent_at.push_back(t);
-            confirmations.push_back(m.get_uint("confirmation"));
         }
     }
-    // First send, then 3 retries 0.3 s apart with confirmation 1, 2, 3; then failure,
-    // and no new send of the same heading.
-    ASSERT_EQ(sent_at.size(), 4u);
-    for (std::size_t i = 0; i < 4; ++i) {
+    // First send, then 3 retries 0.3 s apart; then failure; the same heading is sent
+    // again a second after the failure (a refused heading must not stay unsent).
+    ASSERT_EQ(sent_at.size(), 5u);
+    for (std::size_t i = 0; i < 4; ++i)
         EXPECT_NEAR(sent_at[i], 0.3 * i, 0.011);
-        EXPECT_EQ(confirmations[i], i);
-    }
+    EXPECT_NEAR(sent_at[4], 1.2 + 1.0, 0.011);
     EXPECT_EQ(s.status().retries, 3u);
     EXPECT_EQ(s.status().commands_failed, 1u);
     EXPECT_NE(s.status().reason.find("no ack after 4 sends"), std::string::npos);
 
-    // Refused: no retry; the reason names the result.
+    // Refused: not retried at once; the reason names the result; sent again after a
+    // second. A temporarily rejected command is sent again at its timeout; accepted,
+    // it stops.
     autopilot_session r(c);
     fake_autopilot ap2;
     feed(r, ap2.heartbeat(CUSTOM | ARMED, 15), 0.0);
     r.command(0.0, 0.0);
-    EXPECT_EQ(of(decode_all(r.poll(0.0)), "COMMAND_LONG").size(), 1u);
+    EXPECT_EQ(commands(decode_all(r.poll(0.0))).size(), 1u);
     feed(r, ap2.ack(43002, 2), 0.1); // DENIED
     EXPECT_EQ(r.status().commands_failed, 1u);
     EXPECT_NE(r.status().reason.find("DENIED"), std::string::npos);
-    // A temporarily rejected command is sent again at its timeout; accepted, it stops.
     r.command(0.5, 0.2);
     feed(r, ap2.attitude(0), 0.2);
-    EXPECT_EQ(of(decode_all(r.poll(0.2)), "COMMAND_LONG").size(), 1u);
-    feed(r, ap2.ack(43002, 1), 0.25);
-    feed(r, ap2.attitude(0), 0.45);
-    EXPECT_TRUE(of(decode_all(r.poll(0.45)), "COMMAND_LONG").empty());
-    feed(r, ap2.attitude(0), 0.5);
-    EXPECT_EQ(of(decode_all(r.poll(0.5)), "COMMAND_LONG").size(), 1u);
-    feed(r, ap2.ack(43002, 0), 0.55);
-    for (double t = 0.6; t < 1.5; t += 0.05) {
-        feed(r, ap2.attitude(0), t);
-        EXPECT_TRUE(of(decode_all(r.poll(t)), "COMMAND_LONG").empty()) << t;
+    EXPECT_TRUE(commands(decode_all(r.poll(0.2))).empty()); // a second after the refusal
+    std::vector<double> sends;
+    for (int k = 110; k <= 250; ++k) {
+        const double t = 0.01 * k;
+        r.command(0.5, t);
+        if (k % 5 == 0)
+            feed(
+                r, k % 100 == 0 ? ap2.heartbeat(CUSTOM | ARMED, 15) : ap2.attitude(0), t);
+        if (k == 120)
+            feed(r, ap2.ack(43002, 1), t); // TEMPORARILY_REJECTED
+        if (k == 150)
+            feed(r, ap2.ack(43002, 0), t); // ACCEPTED
+        if (!commands(decode_all(r.poll(t))).empty())
+            sends.push_back(t);
     }
+    ASSERT_EQ(sends.size(), 2u);
+    EXPECT_NEAR(sends[0], 1.1, 0.011);
+    EXPECT_NEAR(sends[1], 1.4, 0.011);
     EXPECT_EQ(r.status().commands_acked, 1u);
 }
 
@@ -263,6 +284,7 @@ TEST(autopilot_session, link_loss_stops_commands_within_a_second_and_resumes)
     for (int k = 0; k <= 1000; ++k) {
         const double t = 0.01 * k;
         const bool talking = t < silent_from || t >= 8.0;
+        s.command(0.3, t); // the controller, every slot
         if (talking && k % 5 == 0) {
             const bool hb = k % 100 == 0;
             feed(s, hb ? ap.heartbeat(CUSTOM | ARMED, 20) : ap.attitude(0.2), t);
@@ -304,7 +326,7 @@ TEST(autopilot_session, foreign_systems_are_ignored)
         feed(s, ap->attitude(0.0), 0.1);
     }
     s.command(0.0, 0.1);
-    EXPECT_TRUE(of(decode_all(s.poll(0.1)), "COMMAND_LONG").empty());
+    EXPECT_TRUE(commands(decode_all(s.poll(0.1))).empty());
     EXPECT_EQ(s.status().state, "connecting");
     EXPECT_TRUE(s.take_nav().empty());
     EXPECT_EQ(s.status().foreign, 4u);
@@ -385,6 +407,128 @@ TEST(autopilot_session, signed_link)
     s.command(0.0, 0.1);
     const auto frames = s.poll(0.1);
     const auto msgs = decode_all(frames, &key); // ours are signed: they verify
-    EXPECT_EQ(of(msgs, "COMMAND_LONG").size(), 1u);
+    EXPECT_EQ(commands(msgs).size(), 1u);
     EXPECT_EQ(s.status().state, "commanding");
+}
+
+TEST(autopilot_session, px4_setpoints_stream_before_offboard)
+{
+    for (auto family : { autopilot_family::px4, autopilot_family::ardupilot_copter }) {
+        autopilot_config c;
+        c.family = family;
+        autopilot_session s(c);
+        fake_autopilot ap;
+        // Armed in POSCTL / ALT_HOLD (not the seeking mode), a heading commanded.
+        feed(s,
+             ap.heartbeat(CUSTOM | ARMED, family == autopilot_family::px4 ? 3u << 16 : 2),
+             0);
+        int n = 0;
+        for (int k = 0; k < 100; ++k) {
+            const double t = 0.01 * k;
+            s.command(0.2, t);
+            if (k % 5 == 0)
+                feed(s, ap.attitude(0), t);
+            n +=
+                static_cast<int>(of(decode_all(s.poll(t)), "SET_ATTITUDE_TARGET").size());
+        }
+        EXPECT_EQ(s.status().state, "holding");
+        if (family == autopilot_family::px4) {
+            // PX4 enters OFFBOARD only with a stream already running: it runs.
+            EXPECT_GE(n, 9);
+            EXPECT_NE(s.status().reason.find("OFFBOARD can be entered"),
+                      std::string::npos);
+        } else {
+            EXPECT_EQ(n, 0); // ArduCopter: nothing outside GUIDED_NOGPS
+        }
+    }
+}
+
+TEST(autopilot_session, a_silent_controller_or_done_stops_commands)
+{
+    autopilot_config c;
+    c.family = autopilot_family::ardupilot_copter;
+    c.command_timeout_s = 1.0;
+    autopilot_session s(c);
+    fake_autopilot ap;
+    double last = -1;
+    for (int k = 0; k <= 400; ++k) {
+        const double t = 0.01 * k;
+        if (t < 1.0 || (t >= 2.5 && t < 3.0))
+            s.command(0.4, t); // the controller stops at 1 s, speaks again at 2.5 s
+        if (t >= 3.0 && t < 3.01)
+            s.finish(t);
+        if (k % 5 == 0)
+            feed(s, k % 100 == 0 ? ap.heartbeat(CUSTOM | ARMED, 20) : ap.attitude(0), t);
+        if (!of(decode_all(s.poll(t)), "SET_ATTITUDE_TARGET").empty()) {
+            last = t;
+            EXPECT_TRUE(t < 2.0 + 0.11 || (t >= 2.5 && t < 3.0)) << t;
+        }
+        if (t > 2.1 && t < 2.5) {
+            EXPECT_EQ(s.status().state, "holding");
+            EXPECT_NE(s.status().reason.find("command_timeout_s"), std::string::npos);
+        }
+    }
+    EXPECT_LT(last, 3.0);
+    EXPECT_EQ(s.status().reason, "the controller is done");
+    s.command(0.4, 4.1); // after done, commands are not obeyed
+    EXPECT_TRUE(of(decode_all(s.poll(4.1)), "SET_ATTITUDE_TARGET").empty());
+}
+
+TEST(autopilot_session, link_details)
+{
+    autopilot_config c = plane_config();
+    autopilot_session s(c);
+    fake_autopilot ap;
+    feed(s, ap.heartbeat(CUSTOM | ARMED, 15), 0.0);
+    s.command(M_PI / 2 + 1e-9, 0.0); // a hair west of north: compass 359.99999994
+    const auto msgs = decode_all(s.poll(0.0));
+    // The streams the link needs, asked for when it comes up.
+    std::vector<std::pair<double, double>> intervals;
+    for (const auto& m : of(msgs, "COMMAND_LONG"))
+        if (m.get_uint("command") == 511)
+            intervals.emplace_back(m.get("param1"), m.get("param2"));
+    EXPECT_EQ(intervals,
+              (std::vector<std::pair<double, double>>{ { 30, 50000 }, { 74, 250000 } }));
+    // The heading as a float in [0, 360): never 360.0.
+    const auto cmds = commands(msgs);
+    ASSERT_EQ(cmds.size(), 2u);
+    EXPECT_EQ(cmds[1].get("param2"), 0.0);
+    EXPECT_FLOAT_EQ(cmds[1].get("param3"), 6.0); // the centripetal acceleration
+    // An ack addressed to another system settles nothing.
+    mav::message other("COMMAND_ACK");
+    other.set("command", 178);
+    other.set("target_system", 255);
+    feed(s, ap.frame(other), 0.05);
+    EXPECT_EQ(s.status().commands_acked, 0u);
+    feed(s, ap.ack(178, 0), 0.06);
+    EXPECT_EQ(s.status().commands_acked, 1u);
+    // Airspeed back to the autopilot's own: DO_CHANGE_SPEED with -2.
+    s.set_airspeed(0);
+    bool restored = false;
+    for (const auto& m : commands(decode_all(s.poll(0.1))))
+        restored = restored || (m.get_uint("command") == 178 && m.get("param2") == -2.0);
+    EXPECT_TRUE(restored);
+}
+
+TEST(autopilot_session, signing_timestamps_never_behind_the_autopilot)
+{
+    std::array<std::uint8_t, 32> key;
+    key.fill(7);
+    mav::signing sign;
+    sign.key = key;
+    autopilot_config c;
+    c.signing_key = key;
+    c.signing_clock_offset_s = 0; // a computer whose clock says 2015
+    autopilot_session s(c);
+    fake_autopilot ap;
+    ap.sign = &sign;
+    ap.sign_time = 300000000000ull; // the autopilot's clock: 2024
+    feed(s, ap.heartbeat(CUSTOM | ARMED, 15), 1.0);
+    mav::parser p;
+    p.require_signing(key);
+    std::vector<mav::frame> out;
+    for (const auto& f : s.poll(1.0))
+        p.push(f.data(), f.size(), out);
+    ASSERT_FALSE(out.empty());
+    EXPECT_GT(out[0].timestamp, 300000000000ull);
 }

@@ -183,10 +183,14 @@ class autopilot_link(gr.basic_block):
     def __init__(self, link="udpin:127.0.0.1:14550", family="ardupilot_plane", mode="",
                  target_system=1, target_component=1, own_system=1, own_component=191,
                  airspeed_mps=0.0, link_timeout_s=0.5, ack_timeout_s=0.3, retries=3,
-                 signing_key="", tlog="", time_scale=1.0):
+                 signing_key="", tlog="", time_scale=1.0, heading_accel_mps2=6.0,
+                 pitch_deg=5.0, thrust=0.5, command_timeout_s=2.0):
         gr.basic_block.__init__(self, name="autopilot_link", in_sig=None, out_sig=None)
         cfg = _core.autopilot_config()
-        cfg.family = family
+        try:
+            cfg.family = family
+        except ValueError as e:
+            raise ValueError("autopilot_link: family = %r: %s" % (family, e))
         cfg.mode = mode
         for name, value in (("target_system", target_system),
                             ("target_component", target_component),
@@ -202,6 +206,10 @@ class autopilot_link(gr.basic_block):
             raise ValueError("autopilot_link: retries = %r: must be an integer in [0, 10]"
                              % (retries,))
         cfg.retries = retries
+        cfg.heading_accel_mps2 = float(heading_accel_mps2)
+        cfg.pitch_deg = float(pitch_deg)
+        cfg.thrust = float(thrust)
+        cfg.command_timeout_s = float(command_timeout_s)
         if signing_key:
             try:
                 key = bytes.fromhex(signing_key)
@@ -210,6 +218,9 @@ class autopilot_link(gr.basic_block):
             if len(key) != 32:
                 raise ValueError("autopilot_link: signing_key: must be 64 hex digits (a "
                                  "32-byte key), or empty for no signing")
+            if time_scale != 1.0:
+                raise ValueError("autopilot_link: signing_key with time_scale = %r: signing "
+                                 "needs the real clock (time_scale 1)" % (time_scale,))
             cfg.signing_key = key
             cfg.signing_clock_offset_s = time.time() - 1420070400.0 - time.monotonic()
         cfg.validate()
@@ -219,8 +230,13 @@ class autopilot_link(gr.basic_block):
         self.time_scale = float(time_scale)
         self.config = cfg
         self.session = _core.autopilot_session(cfg)
-        self.transport = mavlink_transport(link)
         self.tlog = tlog_writer(tlog) if tlog else None
+        try:
+            self.transport = mavlink_transport(link)
+        except (OSError, ValueError):
+            if self.tlog is not None:
+                self.tlog.close()
+            raise
         self.message_port_register_in(pmt.intern("cmd"))
         self.message_port_register_out(pmt.intern("nav"))
         self.message_port_register_out(pmt.intern("status"))
@@ -239,7 +255,8 @@ class autopilot_link(gr.basic_block):
 
     def handle_cmd(self, msg):
         try:
-            theta = float(pmt.to_python(msg)["heading"])
+            d = pmt.to_python(msg)
+            theta = float(d["heading"])
             if not math.isfinite(theta):
                 raise ValueError
         except (KeyError, TypeError, ValueError, AttributeError):
@@ -250,7 +267,12 @@ class autopilot_link(gr.basic_block):
                                  "ones are counted silently)" % pmt.write_string(msg))
             return
         with self._lock:
-            self.session.command(theta, self._now())
+            if d.get("done") is True:
+                # The controller is done (arrived and located, or gave up): the autopilot
+                # keeps its last command; the link commands no more.
+                self.session.finish(self._now())
+            else:
+                self.session.command(theta, self._now())
 
     def start(self):
         self._running = True
@@ -266,7 +288,18 @@ class autopilot_link(gr.basic_block):
                 ready, _, _ = select.select([fd], [], [], max(0.001, 0.01 / self.time_scale))
             except (OSError, ValueError):
                 break
-            data, addr = self.transport.recv() if ready else (b"", None)
+            try:
+                data, addr = self.transport.recv() if ready else (b"", None)
+            except OSError as e:
+                # A serial device unplugged, a network gone: say so once, keep polling
+                # (the link goes to "lost"), and do not spin.
+                if "recv" not in self._logged:
+                    self._logged.add("recv")
+                    self.logger.error("cannot read %s: %s" % (self.transport.spec, e))
+                data, addr = b"", None
+                time.sleep(0.1)
+            if ready and not data and self.transport.sock is None:
+                time.sleep(0.01)  # a serial device at end of file: readable, empty
             with self._lock:
                 t = self._now()
                 if data:
@@ -292,10 +325,10 @@ class autopilot_link(gr.basic_block):
             for s in statuses:
                 s["link"] = self.transport.spec
                 self.statuses.append(s)
-                if s["state"] in ("lost", "holding") and s["reason"]:
+                if s["reason"]:
                     self.logger.warn("autopilot link %s: %s" % (s["state"], s["reason"]))
-                elif s["state"] == "commanding":
-                    self.logger.info("autopilot link: commanding")
+                else:
+                    self.logger.info("autopilot link: %s" % s["state"])
                 self.message_port_pub(pmt.intern("status"), pmt.to_pmt(s))
             if self.tlog is not None:
                 for when, frame in log:

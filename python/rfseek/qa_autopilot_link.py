@@ -42,6 +42,7 @@ class pair:
     with the link's nav and status and the autopilot's cmd stored."""
 
     def __init__(self, family="ardupilot_plane", armed=True, tlog="", **kw):
+        kw.setdefault("command_timeout_s", 60.0)  # the tests command once, not every slot
         self.link = rfseek.autopilot_link("udpin:127.0.0.1:0", family=family, tlog=tlog, **kw)
         self.sim = rfseek.sim_autopilot("udpout:127.0.0.1:%d" % self.link.local_address()[1],
                                         family=family, armed=armed)
@@ -88,8 +89,12 @@ class qa_autopilot_link(gr_unittest.TestCase):
             self.assertAlmostEqual(p.sim.airspeed, 12.0, places=5)
             names = [r[1] for r in p.sim.received]
             self.assertIn("HEARTBEAT", names)  # ours, as the companion computer
-            cmds = [r[2]["command"] for r in p.sim.received if r[1] == "COMMAND_LONG"]
-            self.assertEqual(sorted(set(cmds)), [178, 43002])
+            cmds = {(r[1], r[2]["command"]) for r in p.sim.received
+                    if r[1] in ("COMMAND_LONG", "COMMAND_INT")}
+            # The streams asked for, the speed, the heading (COMMAND_INT, as ArduPlane
+            # handles it in every version).
+            self.assertEqual(cmds, {("COMMAND_LONG", 511), ("COMMAND_LONG", 178),
+                                    ("COMMAND_INT", 43002)})
             # ATTITUDE yaw -> nav heading in the module's convention, position never.
             def last_nav():
                 k = p.nav.num_messages()
@@ -301,13 +306,40 @@ const out = [];
                          ({"target_system": 0}, "target_system"),
                          ({"link_timeout_s": 0}, "link_timeout_s"),
                          ({"retries": 11}, "retries"),
-                         ({"signing_key": "abcd"}, "signing_key")):
+                         ({"signing_key": "abcd"}, "signing_key"),
+                         ({"heading_accel_mps2": 0}, "heading_accel_mps2"),
+                         ({"thrust": 1.5}, "thrust"),
+                         ({"signing_key": "ab" * 32, "time_scale": 10}, "time_scale")):
             with self.assertRaises(ValueError) as cm:
                 rfseek.autopilot_link(**kw)
             self.assertIn(word, str(cm.exception))
         with self.assertRaises(OSError) as cm:
             rfseek.autopilot_link("serial:/dev/rfseek-no-such-device:57600")
         self.assertIn("/dev/rfseek-no-such-device", str(cm.exception))
+
+    def test_done_and_a_silent_controller_stop_commands(self):
+        p = pair(family="ardupilot_copter", command_timeout_s=0.5)
+        try:
+            p.command(0.7)
+            self.assertTrue(wait_until(lambda: p.link.status()["state"] == "commanding"))
+            # The controller falls silent: the link holds after command_timeout_s.
+            self.assertTrue(wait_until(
+                lambda: "command_timeout_s" in p.link.status()["reason"]))
+            n = len(p.sim_commands())
+            wait_until(lambda: False, timeout=0.5)
+            self.assertEqual(len(p.sim_commands()), n)
+            p.command(0.8)
+            self.assertTrue(wait_until(lambda: len(p.sim_commands()) > n))
+            # done: no more commands, even with headings after it.
+            p.link.handle_cmd(pmt.to_pmt({"heading": 0.9, "done": True}))
+            self.assertTrue(wait_until(
+                lambda: p.link.status()["reason"] == "the controller is done"))
+            p.command(1.0)
+            n = len(p.sim_commands())
+            wait_until(lambda: False, timeout=0.5)
+            self.assertEqual(len(p.sim_commands()), n)
+        finally:
+            p.close()
 
     def test_malformed_commands_are_counted_and_dropped(self):
         p = pair()

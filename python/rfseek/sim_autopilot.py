@@ -10,9 +10,13 @@ at 1 Hz with its mode and armed state, ATTITUDE at 20 Hz (the yaw of the world's
 heading: the autopilot's compass), VFR_HUD at 4 Hz, SYS_STATUS at 1 Hz and
 GLOBAL_POSITION_INT at 2 Hz (the world's position about a reference point: a GPS the
 seeker must never use). It obeys the same command paths the link uses: SET_MODE,
-MAV_CMD_DO_SET_MODE, MAV_CMD_COMPONENT_ARM_DISARM, MAV_CMD_GUIDED_CHANGE_HEADING and
-MAV_CMD_DO_CHANGE_SPEED (acknowledged; denied when not armed in GUIDED) for the plane,
-SET_ATTITUDE_TARGET in GUIDED_NOGPS / OFFBOARD for the copters. A heading it accepts goes
+MAV_CMD_DO_SET_MODE (PX4: OFFBOARD only with a setpoint stream running),
+MAV_CMD_COMPONENT_ARM_DISARM, MAV_CMD_SET_MESSAGE_INTERVAL (acknowledged; its rates are
+fixed), MAV_CMD_GUIDED_CHANGE_HEADING as COMMAND_LONG or COMMAND_INT (denied unless armed
+in GUIDED with a heading in [0, 360) and a positive acceleration; the acceleration does
+not shape the simulated turn, which is the world's turn model) and
+MAV_CMD_DO_CHANGE_SPEED for the plane, SET_ATTITUDE_TARGET in GUIDED_NOGPS / OFFBOARD
+for the copters. Acks are addressed to the sender. A heading it accepts goes
 out on "cmd" to channel_source, whose turn model flies it; "state" in is channel_source's.
 
 For tests it can be disarmed, switched out of mode, silenced (a lost link) and told to
@@ -68,6 +72,7 @@ class sim_autopilot(gr.basic_block):
         self.arrivals = []   # (monotonic time, message name) of every frame, even silent
         self.headings = []   # (monotonic time, heading rad) it passed to the world
         self._state = None
+        self._last_setpoint = -1e300
         self._seq = 0
         self._lock = threading.Lock()
         self._running = False
@@ -120,44 +125,58 @@ class sim_autopilot(gr.basic_block):
         except OSError:
             pass
 
-    def _ack(self, command, result):
+    def _ack(self, command, result, to=(0, 0)):
         m = _mav.message("COMMAND_ACK")
         m.set("command", command)
         m.set("result", result)
+        m.set("target_system", to[0])
+        m.set("target_component", to[1])
         self._send(m)
+
+    def _may_enter(self, custom_mode):
+        # PX4 enters OFFBOARD only with a setpoint stream already running.
+        return not (self.family == "px4" and custom_mode == self._guided and
+                    time.monotonic() - self._last_setpoint > 0.5 / self.time_scale)
 
     def _in_guided(self):
         return self.armed and self.custom_mode == self._guided
 
-    def _handle(self, msg):
+    def _handle(self, msg, sender):
         name = msg.name
         self.received.append((time.monotonic(), name, msg.fields()))
         if self.ignore_commands or name == "HEARTBEAT":
             return
         if name == "SET_MODE":
-            self.custom_mode = int(msg.get("custom_mode"))
-        elif name == "COMMAND_LONG":
+            if self._may_enter(int(msg.get("custom_mode"))):
+                self.custom_mode = int(msg.get("custom_mode"))
+        elif name in ("COMMAND_LONG", "COMMAND_INT"):
             cmd = int(msg.get("command"))
-            p = [msg.get("param%d" % i) for i in range(1, 8)]
+            p = [msg.get("param%d" % i) for i in range(1, 5)]
             if cmd == 176:  # MAV_CMD_DO_SET_MODE
-                self.custom_mode = int(p[1])
-                self._ack(cmd, _ACCEPTED)
+                ok = self._may_enter(int(p[1]))
+                if ok:
+                    self.custom_mode = int(p[1])
+                self._ack(cmd, _ACCEPTED if ok else _DENIED, sender)
             elif cmd == 400:  # MAV_CMD_COMPONENT_ARM_DISARM
                 self.armed = p[0] > 0.5
-                self._ack(cmd, _ACCEPTED)
+                self._ack(cmd, _ACCEPTED, sender)
+            elif cmd == 511:  # MAV_CMD_SET_MESSAGE_INTERVAL: its rates are fixed
+                self._ack(cmd, _ACCEPTED, sender)
             elif cmd == 43002 and self.family == "ardupilot_plane":
-                if not self._in_guided() or not 0 <= p[1] < 360:
-                    self._ack(cmd, _DENIED)
+                # As ArduPlane: param2 in [0, 360), param3 the centripetal acceleration.
+                if not self._in_guided() or not 0 <= p[1] < 360 or not p[2] > 0:
+                    self._ack(cmd, _DENIED, sender)
                 else:
-                    self._ack(cmd, _ACCEPTED)
+                    self._ack(cmd, _ACCEPTED, sender)
                     self._fly(math.pi / 2 - math.radians(p[1]))
             elif cmd == 178:  # MAV_CMD_DO_CHANGE_SPEED
                 if p[1] > 0:
                     self.airspeed = p[1]
-                self._ack(cmd, _ACCEPTED if self._in_guided() else _DENIED)
+                self._ack(cmd, _ACCEPTED if self._in_guided() else _DENIED, sender)
             else:
-                self._ack(cmd, _UNSUPPORTED)
+                self._ack(cmd, _UNSUPPORTED, sender)
         elif name == "SET_ATTITUDE_TARGET" and self.family != "ardupilot_plane":
+            self._last_setpoint = time.monotonic()
             if self._in_guided():
                 w, x, y, z = (msg.get("q", i) for i in range(4))
                 yaw = math.atan2(2 * (w * z + x * y), 1 - 2 * (y * y + z * z))
@@ -232,7 +251,7 @@ class sim_autopilot(gr.basic_block):
                     msg = f.decode()
                     self.arrivals.append((time.monotonic(), msg.name))
                     if not self.silent:
-                        self._handle(msg)
+                        self._handle(msg, (f.sysid, f.compid))
             if time.monotonic() >= next_tick:
                 self._telemetry(k)
                 k += 1

@@ -4,7 +4,7 @@
  */
 
 /* BINDTOOL_HEADER_FILE(autopilot_session.h) */
-/* BINDTOOL_HEADER_FILE_HASH(760b4eeb9acf75525dc120c326c59d37) */
+/* BINDTOOL_HEADER_FILE_HASH(9b686854cb724cd120d30eff9c88e4ea) */
 
 #include <gr-rfseek/autopilot_session.h>
 #include <pybind11/pybind11.h>
@@ -36,7 +36,7 @@ py::dict status_dict(const autopilot_status& s)
     return d;
 }
 
-void bind_autopilot_config(py::module& m)
+void bind_autopilot_modes(py::module& m)
 {
     m.def(
         "autopilot_mode_number",
@@ -54,7 +54,10 @@ void bind_autopilot_config(py::module& m)
         },
         py::arg("family"),
         "The family's mode for seeking: GUIDED, GUIDED_NOGPS or OFFBOARD.");
+}
 
+void bind_autopilot_config(py::module& m)
+{
     py::class_<autopilot_config>(
         m,
         "autopilot_config",
@@ -110,11 +113,19 @@ void bind_autopilot_config(py::module& m)
             "Copter, PX4: period of the attitude setpoint stream (s, at most 0.5).")
         .def_readwrite("airspeed_mps",
                        &autopilot_config::airspeed_mps,
-                       "Commanded airspeed (0: left to the autopilot).")
-        .def_readwrite("heading_rate_dps",
-                       &autopilot_config::heading_rate_dps,
-                       "ArduPlane: MAV_CMD_GUIDED_CHANGE_HEADING param 3 (0: the "
-                       "autopilot's default).")
+                       "Commanded airspeed (0: the autopilot's own cruise speed).")
+        .def_readwrite(
+            "heading_accel_mps2",
+            &autopilot_config::heading_accel_mps2,
+            "ArduPlane: GUIDED_CHANGE_HEADING param 3, the largest centripetal "
+            "acceleration of a heading change (m/s^2; bank up to atan(a/g)).")
+        .def_readwrite("command_timeout_s",
+                       &autopilot_config::command_timeout_s,
+                       "Without a controller command for this long, the link holds.")
+        .def_readwrite(
+            "request_streams",
+            &autopilot_config::request_streams,
+            "Ask for ATTITUDE at 20 Hz and VFR_HUD at 4 Hz when the link comes up.")
         .def_readwrite("pitch_deg",
                        &autopilot_config::pitch_deg,
                        "Copter, PX4: forward pitch of the setpoint (deg).")
@@ -159,6 +170,7 @@ void bind_autopilot_config(py::module& m)
 
 void bind_autopilot_session(py::module& m)
 {
+    bind_autopilot_modes(m);
     bind_autopilot_config(m);
     py::class_<autopilot_session>(
         m,
@@ -182,6 +194,10 @@ void bind_autopilot_session(py::module& m)
              py::arg("heading_rad"),
              py::arg("t"),
              "The controller's heading (radians counter-clockwise from east).")
+        .def("finish",
+             &autopilot_session::finish,
+             py::arg("t"),
+             "The controller is done: stop commanding for good.")
         .def("set_airspeed",
              &autopilot_session::set_airspeed,
              py::arg("airspeed_mps"),

@@ -4,7 +4,7 @@
  */
 
 /* BINDTOOL_HEADER_FILE(mavlink.h) */
-/* BINDTOOL_HEADER_FILE_HASH(f29062dbddc9467817a774c65181d1d8) */
+/* BINDTOOL_HEADER_FILE_HASH(88a796875ca73ed3710fa6ed3f7e0830) */
 
 #include <gr-rfseek/mavlink.h>
 #include <pybind11/pybind11.h>

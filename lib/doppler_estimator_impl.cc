@@ -231,7 +231,10 @@ int doppler_estimator_impl::work(int noutput_items,
     for (const auto& t : tags) {
         const bool is_time = pmt::eqv(t.key, d_key_rx_time);
         const bool is_rate = pmt::eqv(t.key, d_key_rx_rate);
-        const bool is_window = !d_periodic && pmt::eqv(t.key, d_tag_key) &&
+        // A tag whose value is False ends a burst (gr-blocks' burst_tagger marks both
+        // ends with the same key): only the others open a window.
+        const bool end_tag = pmt::is_bool(t.value) && !pmt::to_bool(t.value);
+        const bool is_window = !d_periodic && pmt::eqv(t.key, d_tag_key) && !end_tag &&
                                (!d_energy || pmt::is_null(t.value));
         if (!is_time && !is_rate && !is_window)
             continue;

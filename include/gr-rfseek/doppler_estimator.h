@@ -24,7 +24,8 @@ namespace rfseek {
  *
  * \details
  * Input: complex64. Windows of window_len samples are taken either on each tag whose key
- * is tag_key (alignment "tag": the beacons of channel_source or any tagged burst), every
+ * is tag_key and whose value is not False (alignment "tag": the beacons of
+ * channel_source or any tagged burst; gr-blocks' burst_tagger's start tags), every
  * period samples starting at offset (alignment "periodic": a continuous beacon), or at
  * each burst found by its power over the noise floor (alignment "energy": a pulsed beacon
  * received live; see burst_detector).

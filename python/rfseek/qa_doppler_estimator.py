@@ -68,6 +68,37 @@ class qa_doppler_estimator(gr_unittest.TestCase):
         self.assertEqual(est.window_count(), 4)
         self.assertEqual(est.invalid_count(), 0)
 
+    def test_burst_tagger_start_tags_only(self):
+        # gr-blocks' burst_tagger tags each burst's start (True) and end (False) with the
+        # same key: one window per burst, at its start, none at its end.
+        freqs = [250.0, -1200.5, 3000.0]
+        gap = 700
+        samples, trigger, starts = [], [], []
+        for f in freqs:
+            samples.extend(np.zeros(gap))
+            trigger.extend([0] * gap)
+            starts.append(len(samples))
+            samples.extend(burst(f))
+            trigger.extend([1] * N)
+        samples.extend(np.zeros(gap))
+        trigger.extend([0] * gap)
+        tb = gr.top_block()
+        src = blocks.vector_source_c(list(samples), False)
+        trig = blocks.vector_source_s(trigger, False)
+        tagger = blocks.burst_tagger(gr.sizeof_gr_complex)
+        est = rfseek.doppler_estimator(FS, N, NFFT, tag_key="burst", interpolator="newton")
+        dbg = blocks.message_debug()
+        tb.connect(src, (tagger, 0))
+        tb.connect(trig, (tagger, 1))
+        tb.connect(tagger, est)
+        tb.msg_connect(est, "meas", dbg, "store")
+        tb.run()
+        meas = [pmt.to_python(dbg.get_message(i)) for i in range(dbg.num_messages())]
+        self.assertEqual([m["offset"] for m in meas], starts)
+        for m, f in zip(meas, freqs):
+            self.assertTrue(m["valid"])
+            self.assertAlmostEqual(m["freq_hz"], f, delta=0.01)
+
     def test_periodic_windows_and_rx_time_clock(self):
         period, offset = 1500, 200
         f = 777.7

@@ -4,7 +4,7 @@
  */
 
 /* BINDTOOL_HEADER_FILE(doppler_estimator.h) */
-/* BINDTOOL_HEADER_FILE_HASH(6b3ef3305c8b70d0c5ff4032dfd9f521) */
+/* BINDTOOL_HEADER_FILE_HASH(23245b91ef9bf0e0d0ef88d0f599438c) */
 
 #include <gr-rfseek/doppler_estimator.h>
 #include <pybind11/pybind11.h>

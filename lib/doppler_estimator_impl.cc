@@ -25,8 +25,17 @@ int parse_alignment(const std::string& a)
         return 1;
     if (a == "energy")
         return 2;
+    if (a == "acquire")
+        return 3;
     throw std::invalid_argument("doppler_estimator: alignment = '" + a +
-                                "': must be 'tag', 'periodic' or 'energy'");
+                                "': must be 'tag', 'periodic', 'energy' or 'acquire'");
+}
+
+void check_pfa(double pfa)
+{
+    if (!(pfa == 0.0 || (pfa >= 1e-12 && pfa <= 0.5)))
+        throw std::invalid_argument("doppler_estimator: pfa = " + std::to_string(pfa) +
+                                    ": must be 0 (no detection test) or in [1e-12, 0.5]");
 }
 
 std::uint64_t check_period(bool periodic, std::uint64_t period, int window_len)
@@ -51,7 +60,8 @@ doppler_estimator::sptr doppler_estimator::make(double samp_rate,
                                                 std::uint64_t offset,
                                                 double min_freq,
                                                 double max_freq,
-                                                double threshold_db)
+                                                double threshold_db,
+                                                double pfa)
 {
     return gnuradio::make_block_sptr<doppler_estimator_impl>(samp_rate,
                                                              window_len,
@@ -64,7 +74,8 @@ doppler_estimator::sptr doppler_estimator::make(double samp_rate,
                                                              offset,
                                                              min_freq,
                                                              max_freq,
-                                                             threshold_db);
+                                                             threshold_db,
+                                                             pfa);
 }
 
 doppler_estimator_impl::doppler_estimator_impl(double samp_rate,
@@ -78,7 +89,8 @@ doppler_estimator_impl::doppler_estimator_impl(double samp_rate,
                                                std::uint64_t offset,
                                                double min_freq,
                                                double max_freq,
-                                               double threshold_db)
+                                               double threshold_db,
+                                               double pfa)
     : gr::sync_block("doppler_estimator",
                      gr::io_signature::make(1, 1, sizeof(gr_complex)),
                      gr::io_signature::make(0, 0, 0)),
@@ -94,11 +106,32 @@ doppler_estimator_impl::doppler_estimator_impl(double samp_rate,
       d_clock_rate(samp_rate),
       d_port_meas(pmt::mp("meas")),
       d_key_rx_time(pmt::mp("rx_time")),
-      d_key_rx_rate(pmt::mp("rx_rate"))
+      d_key_rx_rate(pmt::mp("rx_rate")),
+      d_samp_rate(samp_rate),
+      d_window_len(window_len)
 {
-    if (!d_periodic && !d_energy && tag_key.empty())
+    const bool acquire = parse_alignment(alignment) == 3;
+    if (!d_periodic && !d_energy && !acquire && tag_key.empty())
         throw std::invalid_argument("doppler_estimator: tag_key must not be empty for "
                                     "tag alignment");
+    check_pfa(pfa);
+    if (acquire) {
+        if (!(static_cast<double>(period) > window_len))
+            throw std::invalid_argument(
+                "doppler_estimator: period = " + std::to_string(period) +
+                ": must be > window_len (" + std::to_string(window_len) +
+                ") for acquire alignment (the beacon's samples from burst to burst)");
+        burst_acquirer_config c;
+        c.window_len = window_len;
+        c.period = static_cast<double>(period);
+        c.pfa = pfa > 0.0 ? pfa : 1e-3;
+        c.min_freq_hz = min_freq;
+        c.max_freq_hz = max_freq;
+        d_acq = std::make_unique<burst_acquirer>(samp_rate, c);
+    } else if (pfa > 0.0) {
+        d_detect = std::make_unique<tone_detector>(
+            samp_rate, window_len, pfa, min_freq, max_freq);
+    }
     message_port_register_out(d_port_meas);
 }
 
@@ -121,18 +154,34 @@ void doppler_estimator_impl::finish_window(bool truncated)
 {
     d_collecting = false;
     tone_estimate e;
-    if (!truncated)
+    tone_detection det;
+    if (!truncated) {
         e = d_est.estimate(d_buf.data());
-    ++d_windows;
+        if (d_detect)
+            det = d_detect->test(d_buf.data());
+    }
     if (truncated)
         ++d_truncated;
+    publish(d_start, e, d_fields, d_windows, d_detect ? &det : nullptr, nullptr);
+}
+
+void doppler_estimator_impl::publish(std::uint64_t start,
+                                     tone_estimate e,
+                                     const pmt::pmt_t& fields,
+                                     std::uint64_t slot,
+                                     const tone_detection* det,
+                                     const acquired_window* acq)
+{
+    if (det && !det->detected)
+        e.valid = false; // noise alone, at the set false-alarm probability
+    ++d_windows;
     if (!e.valid)
         ++d_invalid;
 
     pmt::pmt_t m = pmt::make_dict();
     // Forward the aligning tag's fields (finite numbers and everything non-numeric).
-    if (pmt::is_dict(d_fields) && !pmt::is_null(d_fields)) {
-        pmt::pmt_t items = pmt::dict_items(d_fields);
+    if (pmt::is_dict(fields) && !pmt::is_null(fields)) {
+        pmt::pmt_t items = pmt::dict_items(fields);
         for (std::size_t i = 0; i < pmt::length(items); ++i) {
             const pmt::pmt_t kv = pmt::nth(i, items);
             const pmt::pmt_t v = pmt::cdr(kv);
@@ -140,17 +189,23 @@ void doppler_estimator_impl::finish_window(bool truncated)
                 continue;
             m = pmt::dict_add(m, pmt::car(kv), v);
         }
-    } else if (!pmt::is_null(d_fields)) {
-        m = pmt::dict_add(m, pmt::mp("tag_value"), d_fields);
+    } else if (!pmt::is_null(fields)) {
+        m = pmt::dict_add(m, pmt::mp("tag_value"), fields);
     }
     if (!pmt::dict_has_key(m, pmt::mp("slot")))
-        m = pmt::dict_add(m, pmt::mp("slot"), pmt::from_uint64(d_windows - 1));
-    m = pmt::dict_add(m, pmt::mp("time"), pmt::from_double(time_of(d_start)));
-    m = pmt::dict_add(m, pmt::mp("offset"), pmt::from_uint64(d_start));
+        m = pmt::dict_add(m, pmt::mp("slot"), pmt::from_uint64(slot));
+    m = pmt::dict_add(m, pmt::mp("time"), pmt::from_double(time_of(start)));
+    m = pmt::dict_add(m, pmt::mp("offset"), pmt::from_uint64(start));
     m = pmt::dict_add(m, pmt::mp("freq_hz"), pmt::from_double(e.freq_hz));
     m = pmt::dict_add(m, pmt::mp("snr_db"), pmt::from_double(e.snr_db));
     m = pmt::dict_add(m, pmt::mp("power_db"), pmt::from_double(e.power_db));
     m = pmt::dict_add(m, pmt::mp("noise_power_db"), pmt::from_double(e.noise_power_db));
+    if (det)
+        m = pmt::dict_add(
+            m, pmt::mp("detect_margin_db"), pmt::from_double(det->margin_db));
+    if (acq)
+        m = pmt::dict_add(
+            m, pmt::mp("timing_error"), pmt::from_double(acq->timing_error));
     m = pmt::dict_add(m, pmt::mp("valid"), pmt::from_bool(e.valid));
     message_port_pub(d_port_meas, m);
 }
@@ -234,8 +289,8 @@ int doppler_estimator_impl::work(int noutput_items,
         // A tag whose value is False ends a burst (gr-blocks' burst_tagger marks both
         // ends with the same key): only the others open a window.
         const bool end_tag = pmt::is_bool(t.value) && !pmt::to_bool(t.value);
-        const bool is_window = !d_periodic && pmt::eqv(t.key, d_tag_key) && !end_tag &&
-                               (!d_energy || pmt::is_null(t.value));
+        const bool is_window = !d_periodic && !d_acq && pmt::eqv(t.key, d_tag_key) &&
+                               !end_tag && (!d_energy || pmt::is_null(t.value));
         if (!is_time && !is_rate && !is_window)
             continue;
         feed(in + (pos - base), pos, t.offset - pos);
@@ -266,6 +321,17 @@ int doppler_estimator_impl::work(int noutput_items,
         }
     }
     feed(in + (pos - base), pos, end - pos);
+    if (d_acq) {
+        std::vector<acquired_window> done;
+        d_acq->push(in, static_cast<std::size_t>(noutput_items), done);
+        for (const auto& w : done)
+            publish(w.start,
+                    d_est.estimate(w.samples.data()),
+                    pmt::PMT_NIL,
+                    w.slot,
+                    &w.detection,
+                    &w);
+    }
     if (d_energy) {
         // Keep the last samples for a burst whose start is found later in them.
         const std::size_t keep = 1024;
@@ -352,6 +418,44 @@ void doppler_estimator_impl::set_band(double min_freq, double max_freq)
 {
     gr::thread::scoped_lock lock(d_setlock);
     d_est.set_band(min_freq, max_freq);
+    if (d_acq)
+        d_acq->set_band(min_freq, max_freq);
+    if (d_detect)
+        d_detect->set_band(min_freq, max_freq);
+}
+
+double doppler_estimator_impl::pfa() const
+{
+    gr::thread::scoped_lock lock(setlock());
+    return d_acq ? d_acq->config().pfa : (d_detect ? d_detect->pfa() : 0.0);
+}
+
+void doppler_estimator_impl::set_pfa(double pfa)
+{
+    check_pfa(pfa);
+    gr::thread::scoped_lock lock(d_setlock);
+    if (d_acq) {
+        d_acq->set_pfa(pfa > 0.0 ? pfa : 1e-3);
+    } else if (pfa == 0.0) {
+        d_detect.reset();
+    } else if (d_detect) {
+        d_detect->set_pfa(pfa);
+    } else {
+        d_detect = std::make_unique<tone_detector>(
+            d_samp_rate, d_window_len, pfa, d_est.min_freq_hz(), d_est.max_freq_hz());
+    }
+}
+
+std::string doppler_estimator_impl::acquire_state() const
+{
+    gr::thread::scoped_lock lock(setlock());
+    return d_acq ? d_acq->state_name() : std::string();
+}
+
+double doppler_estimator_impl::period_estimate() const
+{
+    gr::thread::scoped_lock lock(setlock());
+    return d_acq ? d_acq->period_estimate() : static_cast<double>(d_period);
 }
 
 } // namespace rfseek

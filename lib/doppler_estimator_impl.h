@@ -7,9 +7,11 @@
 #ifndef INCLUDED_RFSEEK_DOPPLER_ESTIMATOR_IMPL_H
 #define INCLUDED_RFSEEK_DOPPLER_ESTIMATOR_IMPL_H
 
+#include <gr-rfseek/burst_acquirer.h>
 #include <gr-rfseek/burst_detector.h>
 #include <gr-rfseek/doppler_estimator.h>
 #include <gr-rfseek/tone_estimator.h>
+#include <memory>
 #include <vector>
 
 namespace gr {
@@ -29,7 +31,8 @@ public:
                            std::uint64_t offset,
                            double min_freq,
                            double max_freq,
-                           double threshold_db);
+                           double threshold_db,
+                           double pfa);
 
     int work(int noutput_items,
              gr_vector_const_void_star& input_items,
@@ -39,7 +42,9 @@ public:
     std::string interpolator() const override;
     std::string alignment() const override
     {
-        return d_energy ? "energy" : (d_periodic ? "periodic" : "tag");
+        return d_acq      ? "acquire"
+               : d_energy ? "energy"
+                          : (d_periodic ? "periodic" : "tag");
     }
     double min_freq() const override;
     double max_freq() const override;
@@ -52,6 +57,10 @@ public:
     void set_band(double min_freq, double max_freq) override;
     void set_threshold_db(double threshold_db) override;
     double threshold_db() const override;
+    double pfa() const override;
+    void set_pfa(double pfa) override;
+    std::string acquire_state() const override;
+    double period_estimate() const override;
 
 private:
     gr::thread::mutex& setlock() const
@@ -61,6 +70,12 @@ private:
     void feed(const gr_complex* in, std::uint64_t abs, std::uint64_t count);
     void start_window(std::uint64_t abs, const pmt::pmt_t& fields);
     void finish_window(bool truncated);
+    void publish(std::uint64_t start,
+                 tone_estimate e,
+                 const pmt::pmt_t& fields,
+                 std::uint64_t slot,
+                 const tone_detection* det,
+                 const acquired_window* acq);
     double time_of(std::uint64_t abs) const;
 
     tone_estimator d_est;
@@ -82,10 +97,14 @@ private:
     std::uint64_t d_anchor_offset = 0;
     double d_clock_rate;
     std::uint64_t d_windows = 0, d_invalid = 0, d_truncated = 0;
+    std::unique_ptr<burst_acquirer> d_acq;   // alignment "acquire"
+    std::unique_ptr<tone_detector> d_detect; // the per-window test (pfa > 0), others
 
     const pmt::pmt_t d_port_meas;
     const pmt::pmt_t d_key_rx_time;
     const pmt::pmt_t d_key_rx_rate;
+    double d_samp_rate;
+    int d_window_len;
 };
 
 } // namespace rfseek

@@ -27,13 +27,23 @@ namespace rfseek {
  * is tag_key and whose value is not False (alignment "tag": the beacons of
  * channel_source or any tagged burst; gr-blocks' burst_tagger's start tags), every
  * period samples starting at offset (alignment "periodic": a continuous beacon), or at
- * each burst found by its power over the noise floor (alignment "energy": a pulsed beacon
- * received live; see burst_detector).
+ * each burst found by its power over the noise floor (alignment "energy"; see
+ * burst_detector), or where a timing loop locked to the bursts' period puts them
+ * (alignment "acquire": a pulsed beacon of window_len samples every period samples,
+ * timing unknown, found by narrowband detection at the estimator's own sensitivity;
+ * see burst_acquirer).
  * Each window gives one message on "meas": {slot, time, offset, freq_hz, snr_db,
  * power_db, noise_power_db, valid} plus every field of the aligning tag's dict (heading,
  * ...). time is the sample clock: from the latest rx_time/rx_rate tags when present, else
- * offset / samp_rate. slot comes from the tag, else counts windows. A window cut short by
- * the next tag, or of zero/NaN/Inf samples, gives valid = false with finite placeholders.
+ * offset / samp_rate. slot comes from the tag; under "acquire" it is the beacon period's
+ * number from the stream's start (a lost burst leaves a gap or an invalid window); else
+ * it counts windows. A window cut short by the next tag, or of zero/NaN/Inf samples,
+ * gives valid = false with finite placeholders.
+ * With pfa > 0 (always under "acquire") every window is also tested for a tone at that
+ * false-alarm probability (tone_detector): a window of noise alone gives valid = false,
+ * and the message carries detect_margin_db (the statistic over its threshold, dB);
+ * under "acquire" also timing_error (samples, the loop's prediction against the
+ * matched filter).
  */
 class RFSEEK_API doppler_estimator : virtual public gr::sync_block
 {
@@ -46,13 +56,16 @@ public:
      * \param fft_len N_FFT (>= 4)
      * \param window "rectangular", "hann" or "blackman_harris"
      * \param interpolator "parabolic" (paper eq. 3), "newton" (ML) or "log_parabolic"
-     * \param alignment "tag", "periodic" or "energy"
+     * \param alignment "tag", "periodic", "energy" or "acquire"
      * \param tag_key key of the aligning tags (alignment "tag")
-     * \param period samples between window starts (alignment "periodic", >= window_len)
+     * \param period samples between window starts (alignment "periodic", >= window_len;
+     *        "acquire": the beacon's nominal period, > window_len)
      * \param offset first window start (alignment "periodic", >= 0)
      * \param min_freq, max_freq search band in Hz; equal values search the whole band
      * \param threshold_db burst detection level over the noise floor (alignment
      *        "energy", > 0 dB)
+     * \param pfa false-alarm probability of the per-window detection test: 0 (no test)
+     *        or in [1e-12, 0.5]; "acquire" always tests (0 means 1e-3)
      */
     static sptr make(double samp_rate,
                      int window_len,
@@ -65,7 +78,8 @@ public:
                      std::uint64_t offset = 0,
                      double min_freq = 0.0,
                      double max_freq = 0.0,
-                     double threshold_db = 2.0);
+                     double threshold_db = 2.0,
+                     double pfa = 0.0);
 
     virtual std::string window() const = 0;
     virtual std::string interpolator() const = 0;
@@ -82,6 +96,14 @@ public:
     virtual void set_band(double min_freq, double max_freq) = 0;
     virtual void set_threshold_db(double threshold_db) = 0;
     virtual double threshold_db() const = 0;
+    //! Detection test's false-alarm probability (0: no test).
+    virtual double pfa() const = 0;
+    //! 0 turns the test off (not under "acquire"); else in [1e-12, 0.5].
+    virtual void set_pfa(double pfa) = 0;
+    //! "acquire": "search", "confirm" or "locked"; other alignments: "".
+    virtual std::string acquire_state() const = 0;
+    //! "acquire": the burst period the timing loop tracks (samples); else period.
+    virtual double period_estimate() const = 0;
 };
 
 } // namespace rfseek

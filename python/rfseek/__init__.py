@@ -27,6 +27,7 @@ from .vehicle_bridge import loopback_vehicle, vehicle_bridge  # noqa: E402,F401
 from .sigmf import replay_source, sigmf_recorder  # noqa: E402,F401
 from .autopilot_link import autopilot_link  # noqa: E402,F401
 from .sim_autopilot import sim_autopilot  # noqa: E402,F401
+from .pulsed_beacon import pulsed_beacon  # noqa: E402,F401
 
 try:
     from .seek_view import seek_view  # noqa: E402,F401

@@ -4,7 +4,7 @@
  */
 
 /* BINDTOOL_HEADER_FILE(doppler_estimator.h) */
-/* BINDTOOL_HEADER_FILE_HASH(23245b91ef9bf0e0d0ef88d0f599438c) */
+/* BINDTOOL_HEADER_FILE_HASH(7b932dc47a6c4732d63b75097233cd75) */
 
 #include <gr-rfseek/doppler_estimator.h>
 #include <pybind11/pybind11.h>
@@ -36,23 +36,28 @@ void bind_doppler_estimator(py::module& m)
              py::arg("min_freq") = 0.0,
              py::arg("max_freq") = 0.0,
              py::arg("threshold_db") = 2.0,
+             py::arg("pfa") = 0.0,
              "\\param samp_rate sample rate (Hz, > 0) \\param window_len N samples per "
              "window (3 <= N <= fft_len) \\param fft_len N_FFT (>= 4) \\param window "
              "\"rectangular\", \"hann\" or \"blackman_harris\" \\param interpolator "
              "\"parabolic\" (paper eq. 3), \"newton\" (ML) or \"log_parabolic\" \\param "
-             "alignment \"tag\", \"periodic\" or \"energy\" \\param tag_key key of the "
-             "aligning tags (alignment \"tag\") \\param period samples between window "
-             "starts (alignment \"periodic\", >= window_len) \\param offset first window "
+             "alignment \"tag\", \"periodic\", \"energy\" or \"acquire\" \\param "
+             "tag_key key of the aligning tags (alignment \"tag\") \\param period "
+             "samples between window starts (alignment \"periodic\", >= window_len; "
+             "\"acquire\": the beacon's nominal period, > window_len) \\param offset "
+             "first window "
              "start (alignment \"periodic\", >= 0) \\param min_freq, max_freq search "
              "band in Hz; equal values search the whole band \\param threshold_db burst "
-             "detection level over the noise floor (alignment        \"energy\", > 0 dB)")
+             "detection level over the noise floor (alignment        \"energy\", > 0 dB) "
+             "\\param pfa false-alarm probability of the per-window detection test: 0 "
+             "(no test) or in [1e-12, 0.5]; \"acquire\" always tests (0 means 1e-3)")
         .def("window", &doppler_estimator::window, "The window's name.")
         .def("interpolator",
              &doppler_estimator::interpolator,
              "The peak interpolator's name.")
         .def("alignment",
              &doppler_estimator::alignment,
-             "How windows are found: 'tag', 'periodic' or 'energy'.")
+             "How windows are found: 'tag', 'periodic', 'energy' or 'acquire'.")
         .def("min_freq",
              &doppler_estimator::min_freq,
              "Lower edge of the search band (Hz).")
@@ -87,5 +92,20 @@ void bind_doppler_estimator(py::module& m)
              &doppler_estimator::set_band,
              py::arg("min_freq"),
              py::arg("max_freq"),
-             "Search only [min, max] Hz (GRC callback; equal values: the whole band).");
+             "Search only [min, max] Hz (GRC callback; equal values: the whole band).")
+        .def("pfa",
+             &doppler_estimator::pfa,
+             "Detection test's false-alarm probability (0: no test).")
+        .def("set_pfa",
+             &doppler_estimator::set_pfa,
+             py::arg("pfa"),
+             "0 turns the test off (not under 'acquire'); else in [1e-12, 0.5] (GRC "
+             "callback).")
+        .def("acquire_state",
+             &doppler_estimator::acquire_state,
+             "'acquire': 'search', 'confirm' or 'locked'; other alignments: ''.")
+        .def(
+            "period_estimate",
+            &doppler_estimator::period_estimate,
+            "'acquire': the burst period the timing loop tracks (samples); else period.");
 }

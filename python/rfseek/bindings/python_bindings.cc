@@ -14,6 +14,8 @@ void bind_scenario(py::module& m);
 void bind_world(py::module& m);
 void bind_tone_estimator(py::module& m);
 void bind_burst_detector(py::module& m);
+void bind_tone_detector(py::module& m);
+void bind_burst_acquirer(py::module& m);
 void bind_channel_source(py::module& m);
 void bind_doppler_estimator(py::module& m);
 void bind_arrival(py::module& m);
@@ -34,6 +36,8 @@ PYBIND11_MODULE(rfseek_python, m)
     bind_world(m);
     bind_tone_estimator(m);
     bind_burst_detector(m);
+    bind_tone_detector(m);
+    bind_burst_acquirer(m);
     bind_channel_source(m);
     bind_doppler_estimator(m);
     bind_arrival(m);

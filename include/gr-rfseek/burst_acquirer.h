@@ -1,0 +1,140 @@
+/* -*- c++ -*- */
+/*
+ * Copyright 2026 gr-rfseek authors.
+ * SPDX-License-Identifier: GPL-3.0-or-later
+ *
+ * burst_acquirer: finds a pulsed beacon (N samples every period, timing unknown) by
+ * narrowband detection, locks a timing loop to its period and keeps measuring from the
+ * predicted times through fades. Plain C++ (no GNU Radio types).
+ */
+
+#ifndef INCLUDED_RFSEEK_BURST_ACQUIRER_H
+#define INCLUDED_RFSEEK_BURST_ACQUIRER_H
+
+#include <gr-rfseek/api.h>
+#include <gr-rfseek/tone_detector.h>
+#include <complex>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace gr {
+namespace rfseek {
+
+struct RFSEEK_API burst_acquirer_config {
+    int window_len = 1000;  //!< N, the burst length in samples (>= 16)
+    double period = 5000.0; //!< nominal samples from burst to burst (> window_len)
+    double pfa = 1e-3;      //!< false-alarm probability of each window's test
+    double min_freq_hz = 0.0, max_freq_hz = 0.0; //!< search band (equal: whole band)
+    int hop = 0;          //!< search step in samples (0: window_len / 4)
+    int margin = 0;       //!< timing search +- samples (0: min(N / 4, (period - N) / 2))
+    int max_misses = 100; //!< undetected bursts in a row before searching again
+    double loop_alpha = 0.1;  //!< timing loop: steady-state phase gain (0, 1]
+    double loop_beta = 0.005; //!< timing loop: period gain (0, loop_alpha]
+};
+
+//! One beacon window, measured where the timing loop puts the burst.
+struct RFSEEK_API acquired_window {
+    std::uint64_t start = 0;   //!< absolute index of the window's first sample
+    std::uint64_t slot = 0;    //!< period number counted from the stream's first sample
+    tone_detection detection;  //!< the detection test of this window
+    double timing_error = 0.0; //!< matched-filter start - predicted start (samples)
+    std::vector<std::complex<float>> samples; //!< the window_len samples from start
+};
+
+/*!
+ * \brief Burst timing for a pulsed beacon at the detector's sensitivity.
+ *
+ * \details
+ * Search: windows every hop samples are tested with tone_detector (narrowband: one FFT
+ * bin's share of the energy, not wideband power) over one period; the strongest
+ * detection is a candidate unless the same frequency is also detected in the windows
+ * clear of it (a continuous carrier, e.g. the receiver's DC leak, is not a burst).
+ * Timing: the burst start is the maximum over +-margin samples of the matched filter
+ * |sum_{n=s}^{s+N-1} x_n exp(-j 2 pi f n / fs)| at the detected frequency (the maximum-
+ * likelihood start of a tone burst of known length). Confirm: the candidate is locked
+ * when one of the next two predicted bursts is detected too; both are then placed by
+ * their matched filters together (their spacing known) and emitted.
+ * Locked: each predicted window is tested and measured where predicted; a detected
+ * burst's timing error drives an alpha-beta loop on the start and the period (gains
+ * 1/n at first, then loop_alpha / loop_beta), which follows a clock offset between
+ * beacon and receiver. Undetected bursts are emitted too (detection.detected false) and
+ * the loop coasts; after max_misses in a row it searches again. slot is the period
+ * number from the stream's start, so a burst lost in a fade or a search leaves a gap.
+ */
+class RFSEEK_API burst_acquirer
+{
+public:
+    enum class state { search, confirm, locked };
+
+    //! Bad values throw std::invalid_argument naming the parameter and its range.
+    burst_acquirer(double samp_rate_hz, const burst_acquirer_config& cfg);
+
+    //! Feed the next n samples of the stream; appends the windows completed.
+    void
+    push(const std::complex<float>* x, std::size_t n, std::vector<acquired_window>& out);
+
+    state current_state() const { return d_state; }
+    std::string state_name() const;
+    //! The period the loop tracks (samples; the nominal one before the first lock).
+    double period_estimate() const { return d_period; }
+    std::uint64_t acquisitions() const { return d_acquisitions; }
+    std::uint64_t losses() const { return d_losses; }
+    std::uint64_t samples_seen() const { return d_end; }
+    const burst_acquirer_config& config() const { return d_cfg; }
+    const tone_detector& detector() const { return d_det; }
+
+    void set_pfa(double pfa);
+    void set_band(double min_freq_hz, double max_freq_hz);
+
+private:
+    struct trial {
+        std::uint64_t pos;
+        tone_detection det;
+    };
+    bool have(std::uint64_t from, std::uint64_t to) const;
+    const std::complex<float>* at(std::uint64_t abs) const;
+    std::vector<double> matched(std::uint64_t around, double freq_hz) const;
+    double refine(std::uint64_t around, double freq_hz) const;
+    bool step(std::vector<acquired_window>& out);
+    bool step_search();
+    bool step_confirm(std::vector<acquired_window>& out);
+    bool step_locked(std::vector<acquired_window>& out);
+    bool pulsed(const trial& cand) const;
+    acquired_window make_window(std::uint64_t start,
+                                const tone_detection& d,
+                                double err,
+                                std::uint64_t slot) const;
+    void trim();
+
+    double d_fs;
+    burst_acquirer_config d_cfg;
+    tone_detector d_det;
+    int d_hop, d_margin;
+    state d_state = state::search;
+
+    std::vector<std::complex<float>> d_buf; // samples [d_base, d_end)
+    std::uint64_t d_base = 0, d_end = 0;
+
+    // search
+    std::uint64_t d_pos = 0, d_span_start = 0;
+    std::vector<trial> d_span;
+    // confirm
+    std::uint64_t d_cand = 0;
+    tone_detection d_cand_det;
+    int d_tries = 0;
+    // locked: alpha-beta loop on the predicted start
+    double d_next = 0.0, d_period;
+    std::uint64_t d_slot = 0, d_hits = 0;
+    int d_misses = 0;
+    bool d_have_slot = false; // a lock has numbered the slots
+    double d_last_next = 0.0; // predicted start of slot d_slot when the lock was lost
+    bool d_refined = false;   // the candidate's start has been refined
+    double d_pred = 0.0;      // confirm: predicted start of the next burst
+    std::uint64_t d_acquisitions = 0, d_losses = 0;
+};
+
+} // namespace rfseek
+} // namespace gr
+
+#endif /* INCLUDED_RFSEEK_BURST_ACQUIRER_H */

@@ -1,0 +1,106 @@
+/*
+ * Copyright 2026 gr-rfseek authors.
+ * SPDX-License-Identifier: GPL-3.0-or-later
+ */
+
+/* BINDTOOL_HEADER_FILE(burst_acquirer.h) */
+/* BINDTOOL_HEADER_FILE_HASH(cef0c0ff5bc7b5a3941b061f5d3d52b1) */
+
+#include <gr-rfseek/burst_acquirer.h>
+#include <pybind11/complex.h>
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+namespace py = pybind11;
+
+void bind_burst_acquirer(py::module& m)
+{
+    using namespace gr::rfseek;
+    py::class_<burst_acquirer_config>(
+        m, "burst_acquirer_config", "Settings of burst_acquirer.")
+        .def(py::init<>(), "Defaults: N = 1000 every 5000 samples, pfa 1e-3.")
+        .def_readwrite("window_len",
+                       &burst_acquirer_config::window_len,
+                       "N, the burst length in samples (>= 16)")
+        .def_readwrite("period",
+                       &burst_acquirer_config::period,
+                       "nominal samples from burst to burst (> window_len)")
+        .def_readwrite("pfa",
+                       &burst_acquirer_config::pfa,
+                       "false-alarm probability of each window's test")
+        .def_readwrite("min_freq_hz",
+                       &burst_acquirer_config::min_freq_hz,
+                       "search band's lower edge (equal edges: whole band)")
+        .def_readwrite("max_freq_hz",
+                       &burst_acquirer_config::max_freq_hz,
+                       "search band's upper edge (equal edges: whole band)")
+        .def_readwrite(
+            "hop", &burst_acquirer_config::hop, "search step in samples (0: N / 4)")
+        .def_readwrite("margin",
+                       &burst_acquirer_config::margin,
+                       "timing search +- samples (0: min(N / 4, (period - N) / 2))")
+        .def_readwrite("max_misses",
+                       &burst_acquirer_config::max_misses,
+                       "undetected bursts in a row before searching again")
+        .def_readwrite("loop_alpha",
+                       &burst_acquirer_config::loop_alpha,
+                       "timing loop: steady-state phase gain (0, 1]")
+        .def_readwrite("loop_beta",
+                       &burst_acquirer_config::loop_beta,
+                       "timing loop: period gain [0, loop_alpha]");
+
+    py::class_<acquired_window>(m, "acquired_window", "One beacon window.")
+        .def(py::init<>(), "An empty window.")
+        .def_readonly("start",
+                      &acquired_window::start,
+                      "absolute index of the window's first sample")
+        .def_readonly("slot",
+                      &acquired_window::slot,
+                      "period number counted from the stream's first sample")
+        .def_readonly(
+            "detection", &acquired_window::detection, "the detection test of this window")
+        .def_readonly("timing_error",
+                      &acquired_window::timing_error,
+                      "matched-filter start - predicted start (samples)")
+        .def_property_readonly(
+            "samples",
+            [](const acquired_window& w) {
+                return py::array_t<std::complex<float>>(w.samples.size(),
+                                                        w.samples.data());
+            },
+            "the window_len samples from start (numpy complex64)");
+
+    py::class_<burst_acquirer>(m,
+                               "burst_acquirer",
+                               "Burst timing for a pulsed beacon: narrowband search, "
+                               "confirmation, a timing loop locked to the period.")
+        .def(py::init<double, const burst_acquirer_config&>(),
+             py::arg("samp_rate"),
+             py::arg("config") = burst_acquirer_config(),
+             "An acquirer at samp_rate (Hz) with the given settings.")
+        .def(
+            "push",
+            [](burst_acquirer& a,
+               py::array_t<std::complex<float>, py::array::c_style | py::array::forcecast>
+                   x) {
+                std::vector<acquired_window> out;
+                a.push(x.data(), static_cast<std::size_t>(x.size()), out);
+                return out;
+            },
+            py::arg("x"),
+            "Feed the stream's next samples; returns the windows completed.")
+        .def("state", &burst_acquirer::state_name, "'search', 'confirm' or 'locked'.")
+        .def("period_estimate",
+             &burst_acquirer::period_estimate,
+             "The period the loop tracks (samples).")
+        .def("acquisitions", &burst_acquirer::acquisitions, "Locks acquired so far.")
+        .def("losses", &burst_acquirer::losses, "Locks lost so far.")
+        .def("samples_seen", &burst_acquirer::samples_seen, "Samples pushed so far.")
+        .def("set_pfa", &burst_acquirer::set_pfa, py::arg("pfa"), "Change pfa.")
+        .def("set_band",
+             &burst_acquirer::set_band,
+             py::arg("min_freq"),
+             py::arg("max_freq"),
+             "Search only [min, max] Hz (equal values: the whole band).");
+}

@@ -80,6 +80,12 @@ void burst_acquirer::set_band(double min_freq_hz, double max_freq_hz)
     d_cfg.max_freq_hz = max_freq_hz;
 }
 
+void burst_acquirer::set_samp_rate(double samp_rate_hz)
+{
+    d_det.set_samp_rate(samp_rate_hz);
+    d_fs = samp_rate_hz;
+}
+
 bool burst_acquirer::have(std::uint64_t from, std::uint64_t to) const
 {
     return from >= d_base && to <= d_end;

@@ -239,6 +239,30 @@ void doppler_estimator_impl::feed(const gr_complex* in,
     }
 }
 
+void doppler_estimator_impl::on_rate_tag(std::uint64_t offset, const pmt::pmt_t& value)
+{
+    if (pmt::is_real(value) && pmt::to_double(value) > 0.0 &&
+        std::isfinite(pmt::to_double(value))) {
+        // Re-anchor so earlier samples keep their times.
+        d_anchor_time = time_of(offset);
+        d_anchor_offset = offset;
+        d_clock_rate = pmt::to_double(value);
+        // The rate the samples really come at is also the one frequencies are
+        // measured at (a device that coerced the rate it was asked for).
+        if (std::abs(d_clock_rate - d_samp_rate) > 1e-9 * d_samp_rate) {
+            try {
+                apply_rate(d_clock_rate);
+                d_logger->info("rx_rate tag: measuring at {} Hz", d_clock_rate);
+            } catch (const std::invalid_argument& e) {
+                d_logger->warn(
+                    "rx_rate tag {} Hz not followed: {}", d_clock_rate, e.what());
+            }
+        }
+    } else {
+        d_logger->warn("rx_rate tag dropped: not a positive finite number");
+    }
+}
+
 int doppler_estimator_impl::work(int noutput_items,
                                  gr_vector_const_void_star& input_items,
                                  gr_vector_void_star& output_items)
@@ -308,12 +332,7 @@ int doppler_estimator_impl::work(int noutput_items,
                 }
             }
         } else if (is_rate) {
-            if (pmt::is_real(t.value) && pmt::to_double(t.value) > 0.0) {
-                // Re-anchor so earlier samples keep their times.
-                d_anchor_time = time_of(t.offset);
-                d_anchor_offset = t.offset;
-                d_clock_rate = pmt::to_double(t.value);
-            }
+            on_rate_tag(t.offset, t.value);
         } else {
             if (d_collecting)
                 finish_window(true);
@@ -321,6 +340,7 @@ int doppler_estimator_impl::work(int noutput_items,
         }
     }
     feed(in + (pos - base), pos, end - pos);
+    d_seen = end;
     if (d_acq) {
         std::vector<acquired_window> done;
         d_acq->push(in, static_cast<std::size_t>(noutput_items), done);
@@ -422,6 +442,40 @@ void doppler_estimator_impl::set_band(double min_freq, double max_freq)
         d_acq->set_band(min_freq, max_freq);
     if (d_detect)
         d_detect->set_band(min_freq, max_freq);
+}
+
+void doppler_estimator_impl::apply_rate(double rate)
+{
+    d_est.set_samp_rate(rate); // throws with nothing changed
+    try {
+        if (d_acq)
+            d_acq->set_samp_rate(rate);
+        if (d_detect)
+            d_detect->set_samp_rate(rate);
+    } catch (...) {
+        d_est.set_samp_rate(d_samp_rate);
+        throw;
+    }
+    d_samp_rate = rate;
+}
+
+double doppler_estimator_impl::samp_rate() const
+{
+    gr::thread::scoped_lock lock(setlock());
+    return d_samp_rate;
+}
+
+void doppler_estimator_impl::set_samp_rate(double samp_rate)
+{
+    gr::thread::scoped_lock lock(d_setlock);
+    try {
+        apply_rate(samp_rate);
+    } catch (const std::invalid_argument& e) {
+        throw std::invalid_argument(std::string("doppler_estimator: ") + e.what());
+    }
+    d_anchor_time = time_of(d_seen);
+    d_anchor_offset = d_seen;
+    d_clock_rate = samp_rate;
 }
 
 double doppler_estimator_impl::pfa() const

@@ -57,6 +57,8 @@ public:
     void set_band(double min_freq, double max_freq) override;
     void set_threshold_db(double threshold_db) override;
     double threshold_db() const override;
+    double samp_rate() const override;
+    void set_samp_rate(double samp_rate) override;
     double pfa() const override;
     void set_pfa(double pfa) override;
     std::string acquire_state() const override;
@@ -77,6 +79,8 @@ private:
                  const tone_detection* det,
                  const acquired_window* acq);
     double time_of(std::uint64_t abs) const;
+    void apply_rate(double rate);
+    void on_rate_tag(std::uint64_t offset, const pmt::pmt_t& value);
 
     tone_estimator d_est;
     const bool d_periodic;
@@ -103,7 +107,8 @@ private:
     const pmt::pmt_t d_port_meas;
     const pmt::pmt_t d_key_rx_time;
     const pmt::pmt_t d_key_rx_rate;
-    double d_samp_rate;
+    double d_samp_rate;       // frequencies are measured at this rate
+    std::uint64_t d_seen = 0; // samples seen
     int d_window_len;
 };
 

@@ -124,6 +124,21 @@ void tone_detector::set_band(double min_freq_hz, double max_freq_hz)
     update_threshold();
 }
 
+void tone_detector::set_samp_rate(double samp_rate_hz)
+{
+    if (!(samp_rate_hz > 0.0) || !std::isfinite(samp_rate_hz))
+        throw std::invalid_argument("tone_detector: samp_rate = " +
+                                    std::to_string(samp_rate_hz) + ": must be > 0");
+    const double old = d_fs;
+    d_fs = samp_rate_hz;
+    try {
+        set_band(d_fmin, d_fmax);
+    } catch (...) {
+        d_fs = old;
+        throw;
+    }
+}
+
 void tone_detector::update_threshold()
 {
     d_threshold = threshold_for(d_pfa, d_n, d_bins);

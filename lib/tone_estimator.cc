@@ -342,6 +342,21 @@ void tone_estimator::set_band(double min_freq_hz, double max_freq_hz)
     d_fmax = max_freq_hz;
 }
 
+void tone_estimator::set_samp_rate(double samp_rate_hz)
+{
+    if (!(samp_rate_hz > 0.0) || !std::isfinite(samp_rate_hz))
+        throw std::invalid_argument("tone_estimator: samp_rate = " +
+                                    std::to_string(samp_rate_hz) + ": must be > 0");
+    const double old = d_fs;
+    d_fs = samp_rate_hz;
+    try {
+        set_band(d_fmin, d_fmax);
+    } catch (...) {
+        d_fs = old;
+        throw;
+    }
+}
+
 std::vector<std::string> tone_estimator::windows()
 {
     return { "rectangular", "hann", "blackman_harris" };

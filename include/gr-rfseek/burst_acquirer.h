@@ -86,6 +86,9 @@ public:
 
     void set_pfa(double pfa);
     void set_band(double min_freq_hz, double max_freq_hz);
+    //! A new sample rate (tone_detector::set_samp_rate); the timing is in samples and
+    //! is kept.
+    void set_samp_rate(double samp_rate_hz);
 
 private:
     struct trial {

@@ -35,15 +35,17 @@ namespace rfseek {
  * Each window gives one message on "meas": {slot, time, offset, freq_hz, snr_db,
  * power_db, noise_power_db, valid} plus every field of the aligning tag's dict (heading,
  * ...). time is the sample clock: from the latest rx_time/rx_rate tags when present, else
- * offset / samp_rate. slot comes from the tag; under "acquire" it is the beacon period's
- * number from the stream's start (a lost burst leaves a gap or an invalid window); else
- * it counts windows. A window cut short by the next tag, or of zero/NaN/Inf samples,
- * gives valid = false with finite placeholders.
- * With pfa > 0 (always under "acquire") every window is also tested for a tone at that
- * false-alarm probability (tone_detector): a window of noise alone gives valid = false,
- * and the message carries detect_margin_db (the statistic over its threshold, dB);
- * under "acquire" also timing_error (samples, the loop's prediction against the
- * matched filter).
+ * offset / samp_rate. An rx_rate tag also sets the rate frequencies are measured at
+ * (the rate a radio actually granted; set_samp_rate does the same by hand): a chain that
+ * decimates must scale it (radio_source does). slot comes from the tag; under "acquire"
+ * it is the beacon period's number from the stream's start (a lost burst leaves a gap or
+ * an invalid window); else it counts windows. A window cut short by the next tag, or of
+ * zero/NaN/Inf samples, gives valid = false with finite placeholders. With pfa > 0
+ * (always under "acquire") every window is also tested for a tone at that false-alarm
+ * probability (tone_detector): a window of noise alone gives valid = false, and the
+ * message carries detect_margin_db (the statistic over its threshold, dB); under
+ * "acquire" also timing_error (samples, the loop's prediction against the matched
+ * filter).
  */
 class RFSEEK_API doppler_estimator : virtual public gr::sync_block
 {
@@ -96,6 +98,12 @@ public:
     virtual void set_band(double min_freq, double max_freq) = 0;
     virtual void set_threshold_db(double threshold_db) = 0;
     virtual double threshold_db() const = 0;
+    //! The sample rate frequencies are measured at (Hz): samp_rate, or the latest
+    //! rx_rate tag's or set_samp_rate's.
+    virtual double samp_rate() const = 0;
+    //! A new sample rate (> 0; the search band must still fit within +-rate/2): e.g. the
+    //! rate a device granted. Times go on from the samples already seen at the new rate.
+    virtual void set_samp_rate(double samp_rate) = 0;
     //! Detection test's false-alarm probability (0: no test).
     virtual double pfa() const = 0;
     //! 0 turns the test off (not under "acquire"); else in [1e-12, 0.5].

@@ -78,6 +78,9 @@ public:
 
     void set_pfa(double pfa);
     void set_band(double min_freq_hz, double max_freq_hz);
+    //! A new sample rate (> 0; the band in Hz is kept and must still fit). On a bad
+    //! value nothing changes and std::invalid_argument names it.
+    void set_samp_rate(double samp_rate_hz);
 
     //! P1(x): the exact probability that the largest of B of N uniform-spacing shares
     //! exceeds x (one set of bins; noise only).

@@ -80,6 +80,9 @@ public:
     void set_window(const std::string& window);
     void set_interpolator(const std::string& interpolator);
     void set_band(double min_freq_hz, double max_freq_hz);
+    //! A new sample rate (> 0; the search band in Hz is kept and must still fit).
+    //! On a bad value nothing changes and std::invalid_argument names it.
+    void set_samp_rate(double samp_rate_hz);
 
     static std::vector<std::string> windows();
     static std::vector<std::string> interpolators();

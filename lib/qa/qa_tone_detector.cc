@@ -9,6 +9,7 @@
 
 #include <gr-rfseek/rng.h>
 #include <gr-rfseek/tone_detector.h>
+#include <gr-rfseek/tone_estimator.h>
 #include <gtest/gtest.h>
 #include <cmath>
 #include <complex>
@@ -168,4 +169,37 @@ TEST(tone_detector, band_and_bad_input)
     EXPECT_THROW(tone_detector(100e3, 100, 0.9), std::invalid_argument);
     EXPECT_THROW(tone_detector(100e3, 100, 1e-3, 0.0, 60e3), std::invalid_argument);
     EXPECT_THROW(tone_detector(100e3, 100, 1e-3, 0.0, 500.0), std::invalid_argument);
+}
+
+// A new sample rate: the same samples read as a tone of f x the rate's ratio (the
+// digital frequency is the samples' own), the band in Hz kept; a rate the band cannot
+// fit is refused with nothing changed.
+TEST(ToneDetector, set_samp_rate_rescales_frequencies_and_keeps_the_band)
+{
+    const int n = 1000;
+    std::vector<std::complex<float>> x(n);
+    for (int i = 0; i < n; ++i)
+        x[i] = std::polar(1.0f, static_cast<float>(2.0 * M_PI * 0.123 * i));
+    tone_detector d(100e3, n, 1e-3, -20e3, 20e3);
+    auto r = d.test(x.data());
+    ASSERT_TRUE(r.detected);
+    EXPECT_NEAR(r.freq_hz, 12.3e3, 60.0);
+    const int bins = d.band_bins();
+    d.set_samp_rate(150e3);
+    r = d.test(x.data());
+    EXPECT_TRUE(r.detected);
+    EXPECT_NEAR(r.freq_hz, 0.123 * 150e3, 90.0);
+    EXPECT_EQ(d.min_freq_hz(), -20e3);
+    EXPECT_LT(d.band_bins(), bins); // the same Hz are fewer bins at a higher rate
+    EXPECT_THROW(d.set_samp_rate(30e3), std::invalid_argument);
+    EXPECT_THROW(d.set_samp_rate(-1.0), std::invalid_argument);
+    EXPECT_EQ(d.samp_rate_hz(), 150e3);
+
+    tone_estimator e(100e3, n, 4096, "rectangular", "newton", -20e3, 20e3);
+    const double f1 = e.estimate(x).freq_hz;
+    EXPECT_NEAR(f1, 12.3e3, 0.5);
+    e.set_samp_rate(150e3);
+    EXPECT_NEAR(e.estimate(x).freq_hz, f1 * 1.5, 0.5);
+    EXPECT_THROW(e.set_samp_rate(30e3), std::invalid_argument);
+    EXPECT_EQ(e.samp_rate_hz(), 150e3);
 }

@@ -99,8 +99,10 @@ class qa_autopilot_link(gr_unittest.TestCase):
             def last_nav():
                 k = p.nav.num_messages()
                 return pmt.to_python(p.nav.get_message(k - 1)) if k else {}
-            # VFR_HUD (4 Hz) brings the airspeed into the reports.
-            self.assertTrue(wait_until(lambda: "airspeed" in last_nav()))
+            # VFR_HUD (4 Hz) brings the airspeed into the reports (on a loaded machine
+            # one sent before the speed change may arrive first: wait for the new one).
+            self.assertTrue(wait_until(
+                lambda: abs(last_nav().get("airspeed", 0.0) - 12.0) < 1e-5))
             n = last_nav()
             self.assertAlmostEqual(n["airspeed"], 12.0, places=5)
             self.assertAlmostEqual(n["heading"], 0.3, places=5)

@@ -4,7 +4,7 @@
  */
 
 /* BINDTOOL_HEADER_FILE(burst_acquirer.h) */
-/* BINDTOOL_HEADER_FILE_HASH(cef0c0ff5bc7b5a3941b061f5d3d52b1) */
+/* BINDTOOL_HEADER_FILE_HASH(b854a9b12ff0050a358691d1af1d5cd6) */
 
 #include <gr-rfseek/burst_acquirer.h>
 #include <pybind11/complex.h>
@@ -102,5 +102,10 @@ void bind_burst_acquirer(py::module& m)
              &burst_acquirer::set_band,
              py::arg("min_freq"),
              py::arg("max_freq"),
-             "Search only [min, max] Hz (equal values: the whole band).");
+             "Search only [min, max] Hz (equal values: the whole band).")
+        .def("set_samp_rate",
+             &burst_acquirer::set_samp_rate,
+             py::arg("samp_rate"),
+             "A new sample rate (> 0; the band must still fit); timing is in samples "
+             "and is kept.");
 }

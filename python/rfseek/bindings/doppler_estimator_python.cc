@@ -4,7 +4,7 @@
  */
 
 /* BINDTOOL_HEADER_FILE(doppler_estimator.h) */
-/* BINDTOOL_HEADER_FILE_HASH(7b932dc47a6c4732d63b75097233cd75) */
+/* BINDTOOL_HEADER_FILE_HASH(de0df5cc304eb9c8a35009e687ac76ba) */
 
 #include <gr-rfseek/doppler_estimator.h>
 #include <pybind11/pybind11.h>
@@ -93,6 +93,15 @@ void bind_doppler_estimator(py::module& m)
              py::arg("min_freq"),
              py::arg("max_freq"),
              "Search only [min, max] Hz (GRC callback; equal values: the whole band).")
+        .def("samp_rate",
+             &doppler_estimator::samp_rate,
+             "The rate frequencies are measured at (Hz): samp_rate, or the latest "
+             "rx_rate tag's or set_samp_rate's.")
+        .def("set_samp_rate",
+             &doppler_estimator::set_samp_rate,
+             py::arg("samp_rate"),
+             "A new sample rate (> 0; the search band must still fit), e.g. the rate a "
+             "device granted (GRC callback). Raises ValueError naming it.")
         .def("pfa",
              &doppler_estimator::pfa,
              "Detection test's false-alarm probability (0: no test).")

@@ -4,7 +4,7 @@
  */
 
 /* BINDTOOL_HEADER_FILE(tone_detector.h) */
-/* BINDTOOL_HEADER_FILE_HASH(695b564c9740c5c97c733680da4fe5b8) */
+/* BINDTOOL_HEADER_FILE_HASH(8e80f04abadcaa87df4f6bcc7f16fcbe) */
 
 #include <gr-rfseek/tone_detector.h>
 #include <pybind11/complex.h>
@@ -81,6 +81,11 @@ void bind_tone_detector(py::module& m)
              py::arg("min_freq"),
              py::arg("max_freq"),
              "Search only [min, max] Hz (equal values: the whole band).")
+        .def("set_samp_rate",
+             &tone_detector::set_samp_rate,
+             py::arg("samp_rate"),
+             "A new sample rate (> 0; the band in Hz is kept and must still fit). "
+             "ValueError, with nothing changed, otherwise.")
         .def_static("set_false_alarm",
                     &tone_detector::set_false_alarm,
                     py::arg("x"),

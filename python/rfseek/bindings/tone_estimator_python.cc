@@ -4,7 +4,7 @@
  */
 
 /* BINDTOOL_HEADER_FILE(tone_estimator.h) */
-/* BINDTOOL_HEADER_FILE_HASH(df9ac0bcb34d752c0862b42a5802277c) */
+/* BINDTOOL_HEADER_FILE_HASH(0ebedec56c9ea21d0959705be835ea69) */
 
 #include <gr-rfseek/tone_estimator.h>
 #include <pybind11/complex.h>
@@ -105,6 +105,11 @@ void bind_tone_estimator(py::module& m)
              py::arg("min_freq"),
              py::arg("max_freq"),
              "Search only [min, max] Hz (equal values: the whole band).")
+        .def("set_samp_rate",
+             &tone_estimator::set_samp_rate,
+             py::arg("samp_rate"),
+             "A new sample rate (> 0; the band in Hz is kept and must still fit). "
+             "ValueError, with nothing changed, otherwise.")
         .def_static("windows", &tone_estimator::windows, "The window names.")
         .def_static(
             "interpolators",

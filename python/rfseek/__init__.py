@@ -28,6 +28,7 @@ from .sigmf import replay_source, sigmf_recorder  # noqa: E402,F401
 from .autopilot_link import autopilot_link  # noqa: E402,F401
 from .sim_autopilot import sim_autopilot  # noqa: E402,F401
 from .pulsed_beacon import pulsed_beacon  # noqa: E402,F401
+from .meas_streams import meas_streams  # noqa: E402,F401
 from .radios import (RADIOS, radio_for, radio_rx_chain, radio_source,  # noqa: E402,F401
                      rx_plan, sim_radio)
 

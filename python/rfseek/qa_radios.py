@@ -115,7 +115,7 @@ class qa_radios(gr_unittest.TestCase):
         beacon = rfseek.pulsed_beacon(FS, freq, N, P, snr_db, skip=1234, seed=3)
         tb_src = gr.hier_block2("src", gr.io_signature(0, 0, 0),
                                 gr.io_signature(1, 1, gr.sizeof_gr_complex))
-        radio = rfseek.sim_radio(s)
+        radio = rfseek.sim_radio(s, FS, 10 ** (-snr_db / 20))
         chain = rfseek.radio_rx_chain(s, None, radios.radio_for(family).ddc)
         tb_src.connect(beacon, radio, chain, tb_src)
         est = rfseek.doppler_estimator(FS, N, NFFT, "rectangular", "newton", "acquire",
@@ -148,7 +148,7 @@ class qa_radios(gr_unittest.TestCase):
             src = gr.hier_block2("src", gr.io_signature(0, 0, 0),
                                  gr.io_signature(1, 1, gr.sizeof_gr_complex))
             noise = analog.noise_source_c(analog.GR_GAUSSIAN, 1.0, 5)
-            radio = rfseek.sim_radio(s, in_rate=s.device_rate, dc=0.1)
+            radio = rfseek.sim_radio(s, in_rate=s.device_rate, noise_rms=1.0, dc=0.1)
             chain = rfseek.radio_rx_chain(s)  # kept: it holds a Python block
             src.connect(noise, radio, chain, src)
             est = rfseek.doppler_estimator(FS, N, NFFT, alignment="periodic", period=N,
@@ -198,6 +198,37 @@ class qa_radios(gr_unittest.TestCase):
         with self.assertRaisesRegex(ValueError, "samp_rate|band"):
             est2.set_samp_rate(50e3)
         self.assertAlmostEqual(est2.samp_rate(), granted / 10)
+
+    def test_meas_streams_shows_frequency_snr_and_burst_rate(self):
+        # The measure-only flowgraph's display: a -6 dB beacon of 20 bursts a second.
+        import time
+        freq = -4321.0
+        beacon = rfseek.pulsed_beacon(FS, freq, N, P, -6.0, skip=700, seed=9)
+        est = rfseek.doppler_estimator(FS, N, NFFT, "rectangular", "newton", "acquire",
+                                       "x", P)
+        streams = rfseek.meas_streams(1.0)
+        sinks = [blocks.vector_sink_f() for _ in range(3)]
+        tb = gr.top_block()
+        tb.connect(beacon, blocks.head(gr.sizeof_gr_complex, int(5 * FS)), est)
+        tb.msg_connect(est, "meas", streams, "meas")
+        for k, snk in enumerate(sinks):
+            tb.connect((streams, k), snk)
+        tb.start()
+        deadline = time.monotonic() + 60
+        while len(sinks[2].data()) < 95 and time.monotonic() < deadline:
+            time.sleep(0.05)
+        tb.stop()
+        tb.wait()
+        f, snr, rate = (np.array(s.data()) for s in sinks)
+        self.assertGreaterEqual(len(f), 95)  # 98 bursts after the acquisition
+        self.assertLess(np.sqrt(np.mean((f - freq) ** 2)), 1.3 * beacon.crb_std_hz(-6.0))
+        self.assertAlmostEqual(np.median(snr), -6.0, delta=1.5)
+        # One second of sample time holds 20 bursts (21 counting both ends).
+        self.assertTrue(np.all(np.abs(rate[25:] - 20.0) <= 1.0), rate[25:])
+        streams._on_meas(pmt.intern("junk"))
+        self.assertEqual(streams.dropped(), 1)
+        with self.assertRaisesRegex(ValueError, "window_s"):
+            rfseek.meas_streams(0.0)
 
     def test_docs_table_matches_the_radios(self):
         with open(os.path.join(SOURCE, "docs", "live.md")) as f:

@@ -165,16 +165,16 @@ def rx_plan(family, freq_hz=2.4e9, out_rate=100e3, device_rate=None, lo_offset_h
 
 class rate_retag(gr.sync_block):
     """Passes samples through; sets rx_rate to the rate at its output: an rx_rate tag at
-    the first sample (the granted device rate / decimation), and every upstream rx_rate
-    tag divided by the decimation (a decimating filter moves tags but not their
-    values)."""
+    the first sample (out_rate), unless one comes from upstream, and every upstream
+    rx_rate tag times `factor` (1 / decimation after a decimating filter, which moves
+    tags but not their values; the interpolation after an interpolating one)."""
 
-    def __init__(self, out_rate, decimation):
+    def __init__(self, out_rate, factor):
         gr.sync_block.__init__(self, "rate_retag", [numpy.complex64],
                                [numpy.complex64])
         self.set_tag_propagation_policy(gr.TPP_DONT)
         self.out_rate = float(out_rate)
-        self.decimation = int(decimation)
+        self.factor = float(factor)
         self.key = None
 
     def work(self, input_items, output_items):
@@ -190,7 +190,7 @@ class rate_retag(gr.sync_block):
             if pmt.eqv(t.key, self.key):
                 seen_rate = True
                 if pmt.is_real(value):
-                    value = pmt.from_double(pmt.to_double(value) / self.decimation)
+                    value = pmt.from_double(pmt.to_double(value) * self.factor)
             self.add_item_tag(0, t.offset, t.key, value)
         if base == 0 and n > 0 and not seen_rate:
             self.add_item_tag(0, 0, self.key, pmt.from_double(self.out_rate))
@@ -212,7 +212,7 @@ class radio_rx_chain(gr.hier_block2):
         self.filter = filter.freq_xlating_fir_filter_ccc(
             settings.decimation, list(settings.taps), shift, self.granted_rate)
         self.retag = rate_retag(self.granted_rate / settings.decimation,
-                                settings.decimation)
+                                1.0 / settings.decimation)
         self.connect(self, self.filter, self.retag, self)
 
     def out_rate(self):
@@ -349,16 +349,22 @@ class sim_radio(gr.hier_block2):
     tuned lo_offset above the beacon hears it), plus a DC offset (`dc`, complex,
     relative to full scale) and IQ imbalance (`iq_gain_db`, `iq_phase_deg`); a DDC radio
     (UHD) has shifted back and filtered those out in its own DSP. Then quantisation to
-    the family's ADC bits at `full_scale`. Feed its output to radio_rx_chain(settings)."""
+    the family's ADC bits, the gain set so that the input's noise (`noise_rms`, per
+    complex sample) is `noise_lsb` steps of the ADC (8: the noise floor 18 dB above the
+    quantisation's, as docs/live.md advises). Feed its output to radio_rx_chain(settings)."""
 
-    def __init__(self, settings, in_rate=100e3, dc=0.05 + 0.03j,
-                 iq_gain_db=0.5, iq_phase_deg=2.0, full_scale=16.0):
+    def __init__(self, settings, in_rate=100e3, noise_rms=1.0, noise_lsb=8.0,
+                 dc=0.05 + 0.03j, iq_gain_db=0.5, iq_phase_deg=2.0):
         gr.hier_block2.__init__(self, "sim_radio",
                                 gr.io_signature(1, 1, gr.sizeof_gr_complex),
                                 gr.io_signature(1, 1, gr.sizeof_gr_complex))
         from gnuradio import channels
         r = radio_for(settings.family)
         rate = settings.device_rate
+        if not (noise_rms > 0 and noise_lsb > 0):
+            raise ValueError("noise_rms = %r, noise_lsb = %r: must be > 0"
+                             % (noise_rms, noise_lsb))
+        full_scale = noise_rms * (2 ** (r.adc_bits - 1) - 1) / noise_lsb
         interp = int(round(settings.device_rate / in_rate))
         if interp < 1 or abs(interp * in_rate - settings.device_rate) > 1e-6 * rate:
             raise ValueError("in_rate = %.6g S/s: must divide the device rate %.6g S/s "
@@ -386,6 +392,8 @@ class sim_radio(gr.hier_block2):
         else:
             blocks_in += [blocks.complex_to_interleaved_short(False, scale),
                           blocks.interleaved_short_to_complex(False, False, scale)]
+        # rx_rate as the device would tag its stream: the device rate.
+        blocks_in.append(rate_retag(rate, interp))
         self.stages = blocks_in
         self.connect(self, *blocks_in, self)
 

@@ -3,18 +3,25 @@
 # Copyright 2026 gr-rfseek authors.
 # SPDX-License-Identifier: GPL-3.0-or-later
 #
-"""The paced rehearsal over MAVLink against the in-process command path, seed by seed.
+"""Paced rehearsals against the plain simulation, seed by seed.
 
 For each seed, rfseek-live --source sim flies the same scenario twice, paced to
 --speedup times real time:
-  direct   the controller's commands go straight to the simulated world;
-  mavlink  they cross autopilot_link -> real MAVLink datagrams on loopback ->
-           sim_autopilot -> the world, and the headings come back as ATTITUDE.
+  direct   the beacon's windows on the simulator's tags at 100 kS/s, the controller's
+           commands straight to the simulated world;
+  --via mavlink (default)
+           the commands cross autopilot_link -> real MAVLink datagrams on loopback ->
+           sim_autopilot -> the world, and the headings come back as ATTITUDE;
+  --via radio:FAMILY
+           the beacon as FAMILY's radio delivers it (its device rate, LO offset, DC leak,
+           IQ imbalance, quantisation) through the receive chain of a live radio, its
+           timing acquired (alignment acquire), the heading from the vehicle's reports.
 It prints the distance flown (as a ratio to the start distance) of each and the paired
 difference, with its mean and standard error.
 
-  /usr/bin/python3 scripts/mavlink_rehearsal.py [--seeds 20] [--first 1]
-      [--distance 1000] [--speedup 10] [--strategy paper] [--autopilot ardupilot_plane]
+  /usr/bin/python3 scripts/rehearsal_pairs.py [--seeds 20] [--first 1]
+      [--distance 1000] [--speedup 10] [--strategy paper] [--via mavlink|radio:FAMILY]
+      [--autopilot ardupilot_plane] [--set KEY=VALUE ...]
 
 Run from a build tree (PYTHONPATH and LD_LIBRARY_PATH as in rfseek-env.sh) or with the
 module installed.
@@ -28,17 +35,21 @@ import subprocess
 import sys
 
 
-def fly(live, seed, args, mavlink):
+def fly(live, seed, args, via):
     cmd = [sys.executable, live, "--source", "sim", "--seed", str(seed),
            "--set", "initial_distance_m=%g" % args.distance, "--speedup", str(args.speedup),
            "--strategy", args.strategy, "--duration", str(args.timeout)]
-    if mavlink:
+    for kv in args.set:
+        cmd += ["--set", kv]
+    if via == "mavlink":
         cmd += ["--vehicle", "mavlink", "--autopilot", args.autopilot]
+    elif via:
+        cmd += ["--radio", via.split(":", 1)[1]]
     r = subprocess.run(cmd, capture_output=True, text=True, timeout=args.timeout + 120)
     m = re.search(r"rfseek-live: (arrived|stopped), (\d+) m flown", r.stderr)
     if r.returncode != 0 or not m:
         raise RuntimeError("seed %d (%s) failed:\n%s" % (
-            seed, "mavlink" if mavlink else "direct", r.stderr[-1500:]))
+            seed, via or "direct", r.stderr[-1500:]))
     return m.group(1) == "arrived", float(m.group(2))
 
 
@@ -52,6 +63,11 @@ def main(argv):
     p.add_argument("--strategy", default="paper")
     p.add_argument("--autopilot", default="ardupilot_plane",
                    choices=["ardupilot_plane", "ardupilot_copter", "px4"])
+    p.add_argument("--via", default="mavlink",
+                   help="mavlink, or radio:FAMILY (a radio of rfseek.RADIOS)")
+    p.add_argument("--set", action="append", default=[], metavar="KEY=VALUE",
+                   help="scenario settings for both runs (e.g. carrier_hz=915e6 for a "
+                        "radio that does not tune 2 GHz)")
     p.add_argument("--timeout", type=float, default=600.0,
                    help="wall seconds per run before it is stopped")
     args = p.parse_args(argv)
@@ -59,10 +75,13 @@ def main(argv):
     live = os.path.join(here, "..", "apps", "rfseek-live")
 
     rows = []
-    print("seed  direct ratio  mavlink ratio  difference")
+    if args.via != "mavlink" and not args.via.startswith("radio:"):
+        p.error("--via: mavlink or radio:FAMILY")
+    name = args.via.split(":")[0]
+    print("seed  direct ratio  %7s ratio  difference" % name)
     for seed in range(args.first, args.first + args.seeds):
-        a_ok, a = fly(live, seed, args, False)
-        b_ok, b = fly(live, seed, args, True)
+        a_ok, a = fly(live, seed, args, None)
+        b_ok, b = fly(live, seed, args, args.via)
         # rfseek-live reports the flight to the arrival radius; the ratio is to the
         # straight line from the start to that radius, as the study's.
         line = args.distance - 200.0
@@ -76,9 +95,10 @@ def main(argv):
     se = math.sqrt(sum((x - mean) ** 2 for x in d) / (n - 1) / n) if n > 1 else float("nan")
     print("direct:  mean ratio %.3f, %d/%d arrived" % (
         sum(r[0] for r in rows) / n, sum(r[2] for r in rows), n))
-    print("mavlink: mean ratio %.3f, %d/%d arrived" % (
-        sum(r[1] for r in rows) / n, sum(r[3] for r in rows), n))
-    print("paired difference (mavlink - direct): %+.4f +- %.4f (standard error)" % (mean, se))
+    print("%s: mean ratio %.3f, %d/%d arrived" % (
+        name, sum(r[1] for r in rows) / n, sum(r[3] for r in rows), n))
+    print("paired difference (%s - direct): %+.4f +- %.4f (standard error)"
+          % (name, mean, se))
     return 0
 
 

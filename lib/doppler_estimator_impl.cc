@@ -241,26 +241,26 @@ void doppler_estimator_impl::feed(const gr_complex* in,
 
 void doppler_estimator_impl::on_rate_tag(std::uint64_t offset, const pmt::pmt_t& value)
 {
-    if (pmt::is_real(value) && pmt::to_double(value) > 0.0 &&
-        std::isfinite(pmt::to_double(value))) {
-        // Re-anchor so earlier samples keep their times.
-        d_anchor_time = time_of(offset);
-        d_anchor_offset = offset;
-        d_clock_rate = pmt::to_double(value);
-        // The rate the samples really come at is also the one frequencies are
-        // measured at (a device that coerced the rate it was asked for).
-        if (std::abs(d_clock_rate - d_samp_rate) > 1e-9 * d_samp_rate) {
-            try {
-                apply_rate(d_clock_rate);
-                d_logger->info("rx_rate tag: measuring at {} Hz", d_clock_rate);
-            } catch (const std::invalid_argument& e) {
-                d_logger->warn(
-                    "rx_rate tag {} Hz not followed: {}", d_clock_rate, e.what());
-            }
-        }
-    } else {
+    const double rate = pmt::is_real(value) ? pmt::to_double(value) : -1.0;
+    if (!(rate > 0.0) || !std::isfinite(rate)) {
         d_logger->warn("rx_rate tag dropped: not a positive finite number");
+        return;
     }
+    // The rate the samples really come at is also the one frequencies are measured at
+    // (a device that coerced the rate it was asked for).
+    if (std::abs(rate - d_samp_rate) > 1e-9 * d_samp_rate) {
+        try {
+            apply_rate(rate);
+            d_logger->info("rx_rate tag: measuring at {} Hz", rate);
+        } catch (const std::invalid_argument& e) {
+            d_logger->warn("rx_rate tag {} Hz not followed: {}", rate, e.what());
+            return; // neither frequencies nor times take a rate that cannot be used
+        }
+    }
+    // Re-anchor so earlier samples keep their times.
+    d_anchor_time = time_of(offset);
+    d_anchor_offset = offset;
+    d_clock_rate = rate;
 }
 
 int doppler_estimator_impl::work(int noutput_items,

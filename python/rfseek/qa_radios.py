@@ -230,6 +230,25 @@ class qa_radios(gr_unittest.TestCase):
         with self.assertRaisesRegex(ValueError, "window_s"):
             rfseek.meas_streams(0.0)
 
+    def test_bad_rate_tags_are_not_followed(self):
+        # NaN, zero, a string, and a rate the search band cannot fit: measuring goes on
+        # at the last good rate.
+        t = np.arange(40 * N)
+        x = np.exp(2j * np.pi * 12e3 * t / FS).astype(np.complex64)
+        tags = [gr.tag_utils.python_to_tag((k * 5 * N, pmt.intern("rx_rate"), v,
+                                            pmt.PMT_NIL))
+                for k, v in enumerate((pmt.from_double(float("nan")), pmt.from_double(0.0),
+                                       pmt.intern("fast"), pmt.from_double(50e3)))]
+        est = rfseek.doppler_estimator(FS, N, NFFT, "rectangular", "newton", "periodic",
+                                       "x", N, 0, -45e3, 45e3, 2.0, 1e-3)
+        meas = run(blocks.vector_source_c(x.tolist(), False, 1, tags), est, len(x))
+        self.assertEqual(len(meas), 40)
+        for m in meas:
+            self.assertTrue(m["valid"])
+            self.assertAlmostEqual(m["freq_hz"], 12e3, delta=0.5)
+            self.assertAlmostEqual(m["time"], m["offset"] / FS, delta=1e-9)
+        self.assertEqual(est.samp_rate(), FS)
+
     def test_docs_table_matches_the_radios(self):
         with open(os.path.join(SOURCE, "docs", "live.md")) as f:
             text = f.read()

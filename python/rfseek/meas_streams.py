@@ -56,10 +56,9 @@ class meas_streams(gr.sync_block):
     def work(self, input_items, output_items):
         n = 0
         limit = len(output_items[0])
-        deadline = time.monotonic() + 0.1
         while n < limit and not self._stop:
             try:
-                f, snr, t = self._q.get(timeout=max(0.0, deadline - time.monotonic()))
+                f, snr, t = self._q.get_nowait()
             except queue.Empty:
                 break
             self._times.append(t)
@@ -71,4 +70,8 @@ class meas_streams(gr.sync_block):
             n += 1
         if self._stop and n == 0:
             return -1  # WORK_DONE
+        if n == 0:
+            # The message handler runs on this block's thread between calls: give it the
+            # turn without spinning.
+            time.sleep(0.01)
         return n

@@ -66,13 +66,14 @@ class radio:
 RADIOS = {r.family: r for r in (
     radio("usrp_b2xx", "USRP B200/B210/B200mini/B205mini", "uhd", "type=b200",
           (70e6, 6e9), ((62.5e3, 56e6),),
-          "master clock (32 MHz by default) / an integer", 1e6, 1e6, (0.0, 76.0), 40.0,
+          "master clock (32 MHz by default) / an integer", 1e6, 250e3, (0.0, 76.0), 40.0,
           True, 12, 2.0, ((62.5e3, 56e6),), 1e6, (0.0, 89.8),
-          "LO offset applied by UHD's tune request; the DDC removes the DC spike"),
+          "LO offset by UHD's tune request: the DSP brings the beacon to 0 Hz, the DC "
+          "leak stays 250 kHz away for the host filter"),
     radio("usrp_n2xx_x3xx", "USRP N200/N210, X300/X310", "uhd", "",
           (10e6, 6e9), ((195.3125e3, 25e6),),
           "100 MHz (N2xx) or 200 MHz (X3xx) / an integer; a 184.32 MHz X3xx clock "
-          "coerces 1 MS/s to 1.0017 MS/s (/184)", 1e6, 1e6, (0.0, 31.5), 20.0,
+          "coerces 1 MS/s to 1.0017 MS/s (/184)", 1e6, 250e3, (0.0, 31.5), 20.0,
           True, 14, 2.5, ((195.3125e3, 25e6),), 1e6, (0.0, 31.5),
           "tuning and gain are the daughterboard's (UBX shown: 10 MHz-6 GHz, 0-31.5 dB; "
           "WBX 50 MHz-2.2 GHz, SBX 400 MHz-4.4 GHz); no rate below about 195 kS/s"),
@@ -146,9 +147,10 @@ def rx_plan(family, freq_hz=2.4e9, out_rate=100e3, device_rate=None, lo_offset_h
     if not r.tunes(freq_hz + lo):
         raise ValueError("lo_offset = %.6g Hz: puts the tuned centre outside the %s's "
                          "%.6g-%.6g Hz" % (lo, r.label, r.tune_hz[0], r.tune_hz[1]))
-    # Without a DDC the beacon is shifted digitally: it and the output band must fit in
-    # the device's band with room for the filter's skirt.
-    if not r.ddc and abs(lo) + 0.5 * out_rate > 0.4 * rate:
+    # The DC leak, lo_offset from the beacon, must stay inside the device's band (where
+    # the host filter removes it, rather than fold back onto the beacon), and without a
+    # DDC the beacon is shifted there digitally: both need room for the filter's skirt.
+    if abs(lo) + 0.5 * out_rate > 0.4 * rate:
         raise ValueError("lo_offset = %.6g Hz: |lo_offset| + out_rate / 2 must be within "
                          "0.4 x the device rate (%.6g Hz)" % (lo, 0.4 * rate))
     # The low-pass is flat over the output band's inner 90 % and stops from 55 % of the
@@ -280,6 +282,11 @@ def open_device(settings, device_args=None, gain=None, antenna=""):
         raise LookupError("no SoapySDR device found for '%s' (%s)"
                           % (args, " ".join(str(e).split())))
     src.set_sample_rate(0, settings.device_rate)
+    # As GNU Radio's own PlutoSDR block: manual gain (not the AGC the last user may have
+    # left) and the analog bandwidth of the stream.
+    if src.has_gain_mode(0):
+        src.set_gain_mode(0, False)
+    src.set_bandwidth(0, settings.device_rate)
 
     def tune(f):
         src.set_frequency(0, f + settings.lo_offset_hz)
@@ -348,7 +355,8 @@ class sim_radio(gr.hier_block2):
     as the family's radio would deliver it at the planned device rate: interpolated to the device rate, shifted to -lo_offset (where a radio
     tuned lo_offset above the beacon hears it), plus a DC offset (`dc`, complex,
     relative to full scale) and IQ imbalance (`iq_gain_db`, `iq_phase_deg`); a DDC radio
-    (UHD) has shifted back and filtered those out in its own DSP. Then quantisation to
+    (UHD) shifts the beacon back to 0 Hz in its own DSP, leaving the leak at +lo_offset.
+    Then quantisation to
     the family's ADC bits, the gain set so that the input's noise (`noise_rms`, per
     complex sample) is `noise_lsb` steps of the ADC (8: the noise floor 18 dB above the
     quantisation's, as docs/live.md advises). Feed its output to radio_rx_chain(settings)."""
@@ -374,17 +382,17 @@ class sim_radio(gr.hier_block2):
             taps = firdes.low_pass(interp, settings.device_rate, 0.5 * in_rate,
                                    0.1 * in_rate, window.WIN_BLACKMAN_HARRIS)
             blocks_in.append(filter.interp_fir_filter_ccc(interp, taps))
-        if not r.ddc:
-            # The beacon lo_offset below the tuned centre, with the receiver's DC leak
-            # at the centre and its IQ imbalance (an image of the beacon at +lo_offset).
-            if settings.lo_offset_hz != 0.0:
-                blocks_in.append(blocks.rotator_cc(
-                    -2 * math.pi * settings.lo_offset_hz / rate))
-            blocks_in.append(blocks.add_const_cc(dc * full_scale))
-            blocks_in.append(channels.iqbal_gen(iq_gain_db, iq_phase_deg, 1))
-        # A DDC radio (UHD) tunes lo_offset away in analog and back in its DSP, whose
-        # filter removes the DC leak and the image (2 lo_offset away): what is left to
-        # model is the ADC's quantisation.
+        # The beacon lo_offset below the tuned centre, with the receiver's DC leak at the
+        # centre and its IQ imbalance (an image of the beacon at +lo_offset).
+        w = 2 * math.pi * settings.lo_offset_hz / rate
+        if w != 0.0:
+            blocks_in.append(blocks.rotator_cc(-w))
+        blocks_in.append(blocks.add_const_cc(dc * full_scale))
+        blocks_in.append(channels.iqbal_gen(iq_gain_db, iq_phase_deg, 1))
+        if r.ddc and w != 0.0:
+            # A DDC radio (UHD) shifts the beacon back to 0 Hz in its DSP: the DC leak
+            # is then at +lo_offset, the image at +2 lo_offset.
+            blocks_in.append(blocks.rotator_cc(w))
         scale = (2 ** (r.adc_bits - 1) - 1) / full_scale
         if r.adc_bits <= 8:
             blocks_in += [blocks.complex_to_interleaved_char(False, scale),

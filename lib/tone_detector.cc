@@ -7,6 +7,7 @@
  * from the exact uniform-spacings law (tone_detector.h).
  */
 
+#include "samp_rate.h"
 #include <gnuradio/fft/fft.h>
 #include <fftw3.h>
 #include <gr-rfseek/tone_detector.h>
@@ -64,9 +65,7 @@ tone_detector::tone_detector(double samp_rate_hz,
                              double max_freq_hz)
     : d_fs(samp_rate_hz), d_n(window_len)
 {
-    if (!(samp_rate_hz > 0.0) || !std::isfinite(samp_rate_hz))
-        throw std::invalid_argument("tone_detector: samp_rate = " +
-                                    std::to_string(samp_rate_hz) + ": must be > 0");
+    check_samp_rate("tone_detector", samp_rate_hz);
     if (window_len < 16 || window_len > (1 << 22))
         throw std::invalid_argument(
             "tone_detector: window_len = " + std::to_string(window_len) +
@@ -126,17 +125,8 @@ void tone_detector::set_band(double min_freq_hz, double max_freq_hz)
 
 void tone_detector::set_samp_rate(double samp_rate_hz)
 {
-    if (!(samp_rate_hz > 0.0) || !std::isfinite(samp_rate_hz))
-        throw std::invalid_argument("tone_detector: samp_rate = " +
-                                    std::to_string(samp_rate_hz) + ": must be > 0");
-    const double old = d_fs;
-    d_fs = samp_rate_hz;
-    try {
-        set_band(d_fmin, d_fmax);
-    } catch (...) {
-        d_fs = old;
-        throw;
-    }
+    change_samp_rate(
+        "tone_detector", d_fs, samp_rate_hz, [this] { set_band(d_fmin, d_fmax); });
 }
 
 void tone_detector::update_threshold()

@@ -17,6 +17,7 @@
  */
 
 #include "kernels.h"
+#include "samp_rate.h"
 #include <fftw3.h>
 #include <gr-rfseek/tone_estimator.h>
 #include <volk/volk.h>
@@ -278,9 +279,7 @@ tone_estimator::tone_estimator(double samp_rate_hz,
                                double max_freq_hz)
     : d_fs(samp_rate_hz), d_n(window_len), d_nfft(fft_len)
 {
-    if (!(samp_rate_hz > 0.0) || !std::isfinite(samp_rate_hz))
-        throw std::invalid_argument("tone_estimator: samp_rate = " +
-                                    std::to_string(samp_rate_hz) + ": must be > 0");
+    check_samp_rate("tone_estimator", samp_rate_hz);
     if (fft_len < 4 || fft_len > (1 << 24))
         throw std::invalid_argument(
             "tone_estimator: fft_len = " + std::to_string(fft_len) +
@@ -344,17 +343,8 @@ void tone_estimator::set_band(double min_freq_hz, double max_freq_hz)
 
 void tone_estimator::set_samp_rate(double samp_rate_hz)
 {
-    if (!(samp_rate_hz > 0.0) || !std::isfinite(samp_rate_hz))
-        throw std::invalid_argument("tone_estimator: samp_rate = " +
-                                    std::to_string(samp_rate_hz) + ": must be > 0");
-    const double old = d_fs;
-    d_fs = samp_rate_hz;
-    try {
-        set_band(d_fmin, d_fmax);
-    } catch (...) {
-        d_fs = old;
-        throw;
-    }
+    change_samp_rate(
+        "tone_estimator", d_fs, samp_rate_hz, [this] { set_band(d_fmin, d_fmax); });
 }
 
 std::vector<std::string> tone_estimator::windows()

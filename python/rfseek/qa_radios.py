@@ -109,6 +109,27 @@ class qa_radios(gr_unittest.TestCase):
                     checked += 1
         self.assertGreaterEqual(checked, 4)
 
+    def test_generated_examples_open_the_radio_they_name(self):
+        # What GRC generates, not only what the .grc says: a parameter that refused the
+        # family variable would fall back to its default radio.
+        import shutil
+        import subprocess
+        import sys
+        import tempfile
+        grcc = shutil.which("grcc")
+        self.assertIsNotNone(grcc, "grcc not found")
+        with tempfile.TemporaryDirectory() as out:
+            for name, family in (("seek_usrp", "usrp_b2xx"), ("seek_osmosdr", "rtlsdr"),
+                                 ("measure_radio", "rtlsdr")):
+                p = subprocess.run([sys.executable, grcc, "-o", out,
+                                    os.path.join(SOURCE, "examples", name + ".grc")],
+                                   capture_output=True, text=True, timeout=120)
+                self.assertEqual(p.returncode, 0, p.stderr)
+                with open(os.path.join(out, name + ".py")) as f:
+                    code = f.read()
+                self.assertIn("rfseek.radio_source(family, freq, gain", code, name)
+                self.assertIn('self.family = family = "%s"' % family, code, name)
+
     def check_chain(self, family, snr_db=-12.0, seconds=4.0):
         s = rfseek.rx_plan(family, 915e6 if family == "rtlsdr" else 2.4e9)
         freq = 3217.0

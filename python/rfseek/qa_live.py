@@ -26,7 +26,7 @@ def live(*args):
 class qa_live(gr_unittest.TestCase):
 
     def test_no_device_is_a_clean_error(self):
-        for source, name in (("uhd", "UHD"), ("osmosdr", "osmosdr")):
+        for source, name in (("uhd", "UHD"), ("osmosdr", "osmosdr"), ("soapy", "SoapySDR")):
             p = live("--source", source, "--duration", "1")
             self.assertEqual(p.returncode, 3, p.stderr)
             self.assertIn("no %s device found" % name, p.stderr)

@@ -146,6 +146,14 @@ def uint64_numbers(tc):
     tc.assertAlmostEqual(last["heading"], 3.0)
 
 
+def acquirer_config(**kw):
+    c = rfseek.burst_acquirer_config()
+    c.window_len, c.period = 1000, 5000.0
+    for k, v in kw.items():
+        setattr(c, k, v)
+    return c
+
+
 MC = os.path.join(BUILD, "apps", "rfseek-montecarlo")
 SIM = [sys.executable, os.path.join(SOURCE, "apps", "rfseek-sim"), "--no-figures"]
 LIVE = [sys.executable, os.path.join(SOURCE, "apps", "rfseek-live")]
@@ -194,6 +202,24 @@ ROWS = [
      "ValueError naming the parameter and its range",
      lambda tc: [raises(lambda: rfseek.burst_detector(NAN), "threshold_db")(tc),
                  raises(lambda: rfseek.burst_detector(2.0, 1000, 1), "average_len")(tc)]),
+    ("parameters", "`doppler_estimator(pfa=0.7)`, `set_pfa(-1)`, alignment `acquire` with period <= window_len; `set_samp_rate(50e3)` with a +-45 kHz band",
+     "ValueError naming pfa / period / the band, nothing changed (`qa_acquire`, `qa_radios`)",
+     lambda tc: [qa("acquire", "test_bad_parameters_raise_value_error")(tc),
+                 qa("radios", "test_a_coerced_device_rate_is_followed")(tc)]),
+    ("parameters", "`tone_detector(window_len=8)`, `pfa=0`, a band narrower than 2 bins; `burst_acquirer` hop, margin, loop gains out of range",
+     "ValueError naming the parameter and its range (`qa_tone_detector`, `qa_burst_acquirer`)",
+     lambda tc: [raises(lambda: rfseek.tone_detector(1e5, 8), "window_len")(tc),
+                 raises(lambda: rfseek.tone_detector(1e5, 1000, 0.0), "pfa")(tc),
+                 raises(lambda: rfseek.tone_detector(1e5, 1000, 1e-3, 0.0, 60.0), "band")(tc)]
+     + [raises(lambda k=k, v=v: rfseek.burst_acquirer(1e5, acquirer_config(**{k: v})), k)(tc)
+        for k, v in (("hop", -1), ("margin", 5000), ("loop_alpha", 0.0),
+                     ("loop_beta", 0.5))]),
+    ("parameters", "`rx_plan('usrp_x999')`, an RTL-SDR at 2 GHz, an N210 at 100 kS/s, an out_rate that does not divide the device rate, an LO offset beyond the band; `radio_source` gain out of range",
+     "ValueError naming family / freq / device_rate / out_rate / lo_offset (with the radio's range); the gain is clamped with a warning (`qa_radios`)",
+     qa("radios", "test_bad_settings_and_missing_devices")),
+    ("parameters", "`radio_source` with no radio attached",
+     "LookupError `no UHD / osmosdr / SoapySDR device found ...`; `rfseek-live` exits with status 3",
+     qa("radios", "test_bad_settings_and_missing_devices")),
     ("parameters", "`vehicle_bridge(peer_port=70000)`, `nav_timeout=0`, `max_datagram=10`, `max_rate_hz=nan`",
      "ValueError naming the parameter and its range", qa("vehicle_bridge", "test_bad_parameters")),
     # --- messages
@@ -223,6 +249,13 @@ ROWS = [
      "`valid = False` where not finite or empty, frequency always finite, no NaN", estimator_windows),
     ("samples", "`doppler_estimator` windows: zero, NaN, cut short by the next beacon",
      "`valid = False`, counted, no NaN in meas", qa("doppler_estimator", "test_degenerate_windows_are_invalid_without_nan")),
+    ("samples", "`doppler_estimator` windows of noise alone, with `pfa` or under `acquire`",
+     "`valid = False` but for the false-alarm probability (`detect_margin_db` < 0)",
+     lambda tc: [qa("acquire", "test_detection_test_on_noise_windows")(tc),
+                 qa("radios", "test_the_dc_spike_stays_out_of_the_band")(tc)]),
+    ("samples", "`rx_rate` tag: not a number, NaN, 0, or a rate the search band cannot fit",
+     "logged, not followed; measuring goes on at the last good rate",
+     qa("radios", "test_bad_rate_tags_are_not_followed")),
     ("samples", "SigMF recordings: wrong datatype, no sample rate, mutated metadata and data",
      "ValueError naming the field (scripts/fuzz_python.py: 0 other exceptions)",
      qa("sigmf", "test_bad_recording_is_refused")),
@@ -243,8 +276,16 @@ ROWS = [
     ("programs", "`rfseek-live --source bogus`, `--source file` without `--file`, `--window-len 2`",
      "one line, exit 2", lambda tc: [program(LIVE + ["--source", "bogus"], "bogus")(tc),
                                      qa("live", "test_bad_arguments")(tc)]),
-    ("programs", "`rfseek-live --source uhd` / `osmosdr` with no radio attached",
-     "one line `no UHD device found`, exit 3", qa("live", "test_no_device_is_a_clean_error")),
+    ("programs", "`rfseek-live --source uhd` / `osmosdr` / `soapy` with no radio attached",
+     "one line `no UHD device found` (osmosdr, SoapySDR), exit 3",
+     qa("live", "test_no_device_is_a_clean_error")),
+    ("programs", "`rfseek-live --source osmosdr --freq 2e9` (beyond the RTL-SDR), `--device-rate 50e3` on a USRP, `--source sim --radio rtlsdr` at the world's 2 GHz, `--source zmq` without `--zmq`",
+     "one line naming the setting and the radio's range, exit 2",
+     lambda tc: [program(LIVE + a, w)(tc) for a, w in (
+         (["--source", "osmosdr", "--freq", "2e9"], "freq"),
+         (["--source", "uhd", "--device-rate", "50e3"], "device_rate"),
+         (["--source", "sim", "--radio", "rtlsdr", "--duration", "1"], "carrier_hz"),
+         (["--source", "zmq"], "--zmq"))]),
 ]
 
 

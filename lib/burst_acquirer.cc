@@ -279,7 +279,11 @@ bool burst_acquirer::step_locked(std::vector<acquired_window>& out)
         ++d_hits;
         d_misses = 0;
         const double a = std::max(d_cfg.loop_alpha, 1.0 / static_cast<double>(d_hits));
-        d_period += d_cfg.loop_beta * err;
+        // A clock offset is parts per million: the period is held within 1 % of the
+        // nominal, whatever a burst of garbage makes the errors say (found by fuzzing:
+        // the period went negative).
+        d_period = std::clamp(
+            d_period + d_cfg.loop_beta * err, 0.99 * d_cfg.period, 1.01 * d_cfg.period);
         d_next += a * err + d_period;
     } else {
         ++d_misses;

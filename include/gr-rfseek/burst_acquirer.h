@@ -58,9 +58,10 @@ struct RFSEEK_API acquired_window {
  * Locked: each predicted window is tested and measured where predicted; a detected
  * burst's timing error drives an alpha-beta loop on the start and the period (gains
  * 1/n at first, then loop_alpha / loop_beta), which follows a clock offset between
- * beacon and receiver. Undetected bursts are emitted too (detection.detected false) and
- * the loop coasts; after max_misses in a row it searches again. slot is the period
- * number from the stream's start, so a burst lost in a fade or a search leaves a gap.
+ * beacon and receiver; the period is held within 1 % of the nominal. Undetected
+ * bursts are emitted too (detection.detected false) and the loop coasts; after
+ * max_misses in a row it searches again. slot is the period number from the stream's
+ * start, so a burst lost in a fade or a search leaves a gap.
  */
 class RFSEEK_API burst_acquirer
 {

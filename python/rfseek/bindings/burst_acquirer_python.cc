@@ -4,7 +4,7 @@
  */
 
 /* BINDTOOL_HEADER_FILE(burst_acquirer.h) */
-/* BINDTOOL_HEADER_FILE_HASH(b854a9b12ff0050a358691d1af1d5cd6) */
+/* BINDTOOL_HEADER_FILE_HASH(3969e31fe68479ca9eefa45571532edf) */
 
 #include <gr-rfseek/burst_acquirer.h>
 #include <pybind11/complex.h>

@@ -106,9 +106,7 @@ doppler_estimator_impl::doppler_estimator_impl(double samp_rate,
       d_clock_rate(samp_rate),
       d_port_meas(pmt::mp("meas")),
       d_key_rx_time(pmt::mp("rx_time")),
-      d_key_rx_rate(pmt::mp("rx_rate")),
-      d_samp_rate(samp_rate),
-      d_window_len(window_len)
+      d_key_rx_rate(pmt::mp("rx_rate"))
 {
     const bool acquire = parse_alignment(alignment) == 3;
     if (!d_periodic && !d_energy && !acquire && tag_key.empty())
@@ -248,7 +246,8 @@ void doppler_estimator_impl::on_rate_tag(std::uint64_t offset, const pmt::pmt_t&
     }
     // The rate the samples really come at is also the one frequencies are measured at
     // (a device that coerced the rate it was asked for).
-    if (std::abs(rate - d_samp_rate) > 1e-9 * d_samp_rate) {
+    const double now = d_est.samp_rate_hz();
+    if (std::abs(rate - now) > 1e-9 * now) {
         try {
             apply_rate(rate);
             d_logger->info("rx_rate tag: measuring at {} Hz", rate);
@@ -446,6 +445,7 @@ void doppler_estimator_impl::set_band(double min_freq, double max_freq)
 
 void doppler_estimator_impl::apply_rate(double rate)
 {
+    const double old = d_est.samp_rate_hz();
     d_est.set_samp_rate(rate); // throws with nothing changed
     try {
         if (d_acq)
@@ -453,16 +453,15 @@ void doppler_estimator_impl::apply_rate(double rate)
         if (d_detect)
             d_detect->set_samp_rate(rate);
     } catch (...) {
-        d_est.set_samp_rate(d_samp_rate);
+        d_est.set_samp_rate(old);
         throw;
     }
-    d_samp_rate = rate;
 }
 
 double doppler_estimator_impl::samp_rate() const
 {
     gr::thread::scoped_lock lock(setlock());
-    return d_samp_rate;
+    return d_est.samp_rate_hz();
 }
 
 void doppler_estimator_impl::set_samp_rate(double samp_rate)
@@ -495,8 +494,11 @@ void doppler_estimator_impl::set_pfa(double pfa)
     } else if (d_detect) {
         d_detect->set_pfa(pfa);
     } else {
-        d_detect = std::make_unique<tone_detector>(
-            d_samp_rate, d_window_len, pfa, d_est.min_freq_hz(), d_est.max_freq_hz());
+        d_detect = std::make_unique<tone_detector>(d_est.samp_rate_hz(),
+                                                   d_est.window_len(),
+                                                   pfa,
+                                                   d_est.min_freq_hz(),
+                                                   d_est.max_freq_hz());
     }
 }
 

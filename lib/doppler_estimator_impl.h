@@ -107,9 +107,7 @@ private:
     const pmt::pmt_t d_port_meas;
     const pmt::pmt_t d_key_rx_time;
     const pmt::pmt_t d_key_rx_rate;
-    double d_samp_rate;       // frequencies are measured at this rate
     std::uint64_t d_seen = 0; // samples seen
-    int d_window_len;
 };
 
 } // namespace rfseek

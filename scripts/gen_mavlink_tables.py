@@ -1,4 +1,4 @@
-#!/usr/bin/env python3
+#!/usr/bin/python3
 # Copyright 2026 gr-rfseek authors.
 # SPDX-License-Identifier: GPL-3.0-or-later
 """Write lib/mavlink_tables.inc, the MAVLink facts the codec needs, from the official

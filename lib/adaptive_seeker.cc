@@ -8,7 +8,7 @@
  * gain. docs/seeker.md has the analysis behind each constant.
  *
  * - Acquisition: fly three headings 120 deg apart twice round (adaptive_acquire_slots
- *   each; with a turn-rate limit, one full turn at the maximum rate) and fit
+ *   each; with a turn limit, a turn at the maximum rate, see below) and fit
  *   f = a cos psi + b sin psi + c + d t (doppler_fit): the whole circle of bearings,
  *   "flying away" included, and a linear CFO drift, in a few slots. An implausible fit
  *   (few samples, wrong amplitude, loose bearing) is retried after
@@ -23,6 +23,11 @@
  * - Away check: the probe mean is the CFO plus A cos(theta~). The CFO is tracked from
  *   cycle to cycle; a mean below it by more than A says |theta~| > 90 deg, and an error
  *   beyond adaptive_reacquire_rad also starts a new acquisition.
+ * - Turns planned for the airframe (any turn limit: a turn rate, or a bank and a roll
+ *   rate): the acquisition turn leads the heading by ACQ_LEAD, reverses once the side
+ *   test says the emitter is the other way, and ends on the first arc (>= ARC_MIN)
+ *   whose fit is sure; probe segments are lengthened so that turns take at most
+ *   adaptive_turn_share of a cycle, and delta is capped where they could not.
  * - Turn awareness: every measurement enters the fits at its own heading (the commanded
  *   heading once the vehicle has turned to it, the measured one while it turns), never
  *   averaged as if flown straight at the probe heading.
@@ -56,6 +61,17 @@ constexpr double ARC_DRIFT = 5.235987755982988; // rad (300 deg): fit the drift 
 constexpr double ARC_MAX_STD = 0.07; //           // rad (4 deg): the fit's bearing std
 constexpr double ARC_AMP_TOL = 0.25; // |A fitted / f_d,max - 1|
 constexpr int TURN_MAX_SEGMENTS = 4; // probe segments up to 4 x adaptive_track_slots
+// The turn-limited acquisition's side test (doppler_side): from SIDE_MIN of arc, the
+// Doppler along the arc, the amplitude known, says on which side the emitter lies; once
+// the likelihood ratio of the sides passes SIDE_Z^2 the turn goes on that way (reversed
+// if need be). Undecided at SIDE_MAX (the emitter near ahead or behind), it goes on as
+// it is. SIDE_Z chosen on seeds 990001-990300 (2 to 4 alike).
+constexpr double SIDE_MIN = 0.05235987755982988; // rad (3 deg)
+constexpr double SIDE_MAX = 0.5235987755982988;  // rad (30 deg)
+constexpr double SIDE_Z = 3.0;
+// Planned turns lead the heading by ACQ_LEAD: the roll begins at once at its full rate,
+// and the way of the turn does not depend on the compass noise of the start heading.
+constexpr double ACQ_LEAD = 0.3490658503988659; // rad (20 deg)
 
 class adaptive_seeker : public seeker
 {
@@ -66,7 +82,7 @@ public:
           d_track(make_ground_track(cfg)),
           d_amp(cfg.max_doppler_hz()),
           d_lim(turn_limits_of(cfg)),
-          d_plan_turns(d_lim.rolls()),
+          d_plan_turns(d_lim.limited()),
           d_turn(d_lim, 0.0)
     {
         d_delta_max = turn_delta_max();
@@ -111,8 +127,12 @@ public:
             const auto r = d_filter.push(m.freq_hz, m.snr_db);
             c.accepted = r.accepted;
             c.filtered_freq_hz = r.value;
-            if (r.accepted && d_tag_cycle == d_cycle)
+            if (r.accepted && d_tag_cycle == d_cycle) {
                 d_samples.push_back(doppler_sample{ psi, m.time_s, m.freq_hz });
+                if (d_acquiring && !d_side_known) // the model's heading: no noise
+                    d_side_samples.push_back(
+                        doppler_sample{ d_model, m.time_s, m.freq_hz });
+            }
         }
         if (d_acquiring && d_tag_cycle == d_cycle)
             d_arc += std::abs(world::wrap(d_model - d_arc_last)); // the model: no noise
@@ -132,6 +152,8 @@ public:
             d_acquiring ? start_acquisition() : start_cycle();
         }
 
+        if (d_acquiring && d_plan_turns && !d_side_known && d_arc >= SIDE_MIN)
+            choose_side();
         if (d_acquiring && d_plan_turns && d_arc >= ARC_MIN && d_arc < ARC_DRIFT &&
             finish_acquisition(true)) {
             c.update = true; // the arc flown so far already holds a sure bearing
@@ -211,22 +233,53 @@ private:
                 d_plan.push_back(d_acq_origin);
         } else {
             d_acq_origin = d_model;
+            d_side_known = false;
+            d_side_samples.clear();
         }
         d_acq_start = retry ? d_acq_origin : d_model;
         d_arc = 0.0;
         d_arc_last = d_model;
         const double rate = d_lim.max_rate() * d_cfg.slot_period_s;
         if (rate > 0.0 && rate < ACQ_STEP) {
-            const int n = static_cast<int>(std::ceil(2.0 * M_PI / rate));
-            for (int i = 1; i <= n; ++i)
-                d_plan.push_back(d_acq_start + i * rate * (1.0 - 1e-9));
-            for (int i = 0; i < d_cfg.adaptive_acquire_slots; ++i)
-                d_plan.push_back(d_acq_start + n * rate * (1.0 - 1e-9));
+            plan_turn(d_acq_start);
         } else {
             for (int k = 0; k < ACQ_HEADINGS; ++k)
                 for (int i = 0; i < d_cfg.adaptive_acquire_slots; ++i)
                     d_plan.push_back(d_acq_start + k * ACQ_STEP);
         }
+    }
+
+    // One full turn at the maximum rate from `from`, ACQ_LEAD ahead, the way d_acq_dir
+    // says, then adaptive_acquire_slots on its last heading.
+    void plan_turn(double from)
+    {
+        const double rate = d_acq_dir * d_lim.max_rate() * d_cfg.slot_period_s;
+        const double lead = d_acq_dir * ACQ_LEAD;
+        const int n = static_cast<int>(std::ceil(2.0 * M_PI / std::abs(rate)));
+        for (int i = 1; i <= n; ++i)
+            d_plan.push_back(from + lead + i * rate * (1.0 - 1e-9));
+        for (int i = 0; i < d_cfg.adaptive_acquire_slots; ++i)
+            d_plan.push_back(from + lead + n * rate * (1.0 - 1e-9));
+    }
+
+    // The side test (SIDE_MIN .. SIDE_MAX of arc, doppler_side): which side of the
+    // heading now flown the emitter lies on, the amplitude known; a sure answer the other
+    // way than the turn reverses it from here. The arc and the samples go on (both ways
+    // add headings to the fit).
+    void choose_side()
+    {
+        const doppler_side_result r = doppler_side(d_side_samples, d_model, d_amp);
+        if (!r.ok || static_cast<int>(d_side_samples.size()) < ACQ_MIN_SAMPLES ||
+            !(r.statistic > SIDE_Z * SIDE_Z)) {
+            d_side_known = d_arc >= SIDE_MAX;
+            return;
+        }
+        d_side_known = true;
+        if ((r.side > 0) == (d_acq_dir > 0.0))
+            return;
+        d_acq_dir = -d_acq_dir;
+        d_plan.resize(d_pos);
+        plan_turn(d_model);
     }
 
     // arc: the turn-limited acquisition's early end (an arc short of the full turn, no
@@ -244,7 +297,10 @@ private:
                     !(r.bearing_std_rad < ARC_MAX_STD)))
             return false; // not sure yet: turn on
         d_theta = world::wrap(r.bearing_rad);
-        if (d_cfg.adaptive_ground_track) // the bearing goes on: one more measurement
+        // The bearing goes on as one more measurement of the ground track, but not an
+        // arc's: fitted without the drift, it can be off by several degrees, which the
+        // first cycles would read as the bearing turning (a crab in calm air).
+        if (d_cfg.adaptive_ground_track && !arc)
             d_crab = d_track.update(mean_time(), d_theta, r.bearing_std_rad);
         d_sigma = std::max(r.residual_rms_hz, 1e-3);
         d_cfo = r.offset_hz;
@@ -391,12 +447,14 @@ private:
     double d_centre = 0.0; // the heading the probes of this cycle are flown around
     const double d_amp;    // f_d,max
     const turn_limits d_lim;
-    // Turns planned for the airframe (arc acquisition, probe segments and delta sized
-    // for the reversals): coordinated turns (bank and roll limits).
+    // Turns planned for the airframe (side test, arc acquisition, probe segments and
+    // delta sized for the reversals): any turn limit.
     const bool d_plan_turns;
     coordinated_turn d_turn; // the heading model with rolls (d_model otherwise)
     double d_arc = 0.0, d_arc_last = 0.0; // heading flown in this acquisition
     double d_delta_max = 0.0;             // delta_max within the airframe's turns
+    double d_acq_dir = 1.0;               // the acquisition turn's way (+1: left)
+    bool d_side_known = false;            // the side test has decided it
     bool d_started = false, d_acquiring = true, d_hold = false, d_turning = false;
     double d_theta = 0.0, d_model = 0.0, d_last_cmd = 0.0, d_hold_heading = 0.0;
     double d_acq_start = 0.0, d_acq_origin = 0.0, d_delta = 0.0, d_err = 0.0;
@@ -407,6 +465,7 @@ private:
     long d_cycle = 0, d_tag_cycle = -1;
     std::vector<double> d_plan;
     std::vector<doppler_sample> d_samples;
+    std::vector<doppler_sample> d_side_samples; // the side test's, at the model's heading
 };
 
 } // namespace

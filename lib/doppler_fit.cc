@@ -216,6 +216,46 @@ doppler_fit_result fit_doppler_narrow(const std::vector<doppler_sample>& s,
     return out;
 }
 
+doppler_side_result doppler_side(const std::vector<doppler_sample>& s,
+                                 double heading_rad,
+                                 double amplitude_hz,
+                                 int grid,
+                                 double floor_hz)
+{
+    doppler_side_result out;
+    const int n = static_cast<int>(s.size());
+    if (n < 3 || grid < 4 || !(amplitude_hz > 0.0))
+        return out;
+    double best = INFINITY, best_left = INFINITY, best_right = INFINITY, best_beta = 0.0;
+    for (int k = 0; k < grid; ++k) {
+        const double beta = world::wrap(heading_rad + 2.0 * M_PI * (k + 0.5) / grid);
+        double sum = 0.0, sum2 = 0.0;
+        for (const auto& x : s) {
+            const double r = x.freq_hz - amplitude_hz * std::cos(x.heading_rad - beta);
+            sum += r;
+            sum2 += r * r;
+        }
+        const double ss = sum2 - sum * sum / n; // c at its least-squares value
+        double& side_best =
+            world::wrap(beta - heading_rad) > 0.0 ? best_left : best_right;
+        side_best = std::min(side_best, ss);
+        if (ss < best) {
+            best = ss;
+            best_beta = beta;
+        }
+    }
+    if (!std::isfinite(best))
+        return out;
+    const double var = std::max(best / (n - 2), floor_hz * floor_hz);
+    out.ok = true;
+    out.bearing_rad = best_beta;
+    out.side = world::wrap(best_beta - heading_rad) > 0.0 ? 1 : -1;
+    out.statistic =
+        (out.side > 0 ? best_right - best_left : best_left - best_right) / var;
+    out.residual_rms_hz = std::sqrt(std::max(best, 0.0) / (n - 2));
+    return out;
+}
+
 double invert_probe_difference(double f_plus_hz,
                                double f_minus_hz,
                                double delta_rad,

@@ -63,6 +63,30 @@ RFSEEK_API doppler_fit_result fit_doppler_narrow(const std::vector<doppler_sampl
                                                  double trim_sigma = 4.0,
                                                  double trim_floor_hz = 10.0);
 
+//! Which way the emitter lies from a heading (doppler_side).
+struct doppler_side_result {
+    bool ok = false;          //!< enough samples (3) and a finite fit
+    double bearing_rad = 0.0; //!< the best bearing on the grid
+    int side = 0;             //!< +1: left of the heading (counterclockwise), -1: right
+    double statistic = 0.0;   //!< (SS of the best bearing on the other side - SS) / s^2
+    double residual_rms_hz = 0.0;
+};
+
+/*!
+ * Side test for a short arc, the amplitude A known: f = A cos(psi - beta) + c with c
+ * free, beta on a grid of `grid` bearings (least squares for c at each). The best
+ * bearing's side of `heading_rad`, and the generalised likelihood ratio of that side
+ * against the other: the least residual sum of squares with beta on the other side less
+ * the best, over the best fit's residual variance (floored at floor_hz^2). Unlike a fit
+ * linear in sin(psi - theta), it keeps the curvature A cos(psi - beta) has over an arc
+ * when the emitter is behind. Near ahead or behind both sides fit alike (statistic ~0).
+ */
+RFSEEK_API doppler_side_result doppler_side(const std::vector<doppler_sample>& s,
+                                            double heading_rad,
+                                            double amplitude_hz,
+                                            int grid = 720,
+                                            double floor_hz = 0.5);
+
 /*!
  * The probe difference inverted in closed form: with f+ and f- the mean frequencies at
  * theta + delta and theta - delta, f+ - f- = -2 A sin(delta) sin(theta~), theta~ = theta

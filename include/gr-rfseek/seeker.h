@@ -85,7 +85,7 @@ struct RFSEEK_API seeker_config {
     int adaptive_track_slots = 20; //!< slots per probe segment (4 segments per cycle)
     //! With a turn limit, segments are lengthened so that the reversals take at most
     //! this share of a probe cycle (in (0, 1]).
-    double adaptive_turn_share = 0.25;
+    double adaptive_turn_share = 0.75;
     double adaptive_gain = 0.5; //!< fraction of the estimated error removed per cycle
     double adaptive_delta_min_rad = 0.03490658503988659; //!< 2 deg
     double adaptive_delta_max_rad = 0.3490658503988659;  //!< 20 deg

@@ -276,3 +276,47 @@ TEST(adaptive, probe_cycles_keep_the_turning_share_of_a_fixed_wing)
                 << preset << " seed " << seed;
         }
 }
+
+namespace {
+
+// Heading change (rad, + left) after `slots` slots of a run whose emitter starts at
+// `rel` rad from the vehicle's heading (+: on its left).
+double turned_after(
+    const std::string& preset, double rate, double rel, std::uint64_t seed, int slots)
+{
+    scenario sc;
+    sc.apply_preset(preset);
+    if (rate > 0.0)
+        sc.turn_rate_rad_per_s = rate;
+    sc.seed = seed;
+    sc.start_angle_rad = 0.0;
+    sc.start_heading_rad = world::wrap(world(sc).bearing_to_emitter_rad() - rel);
+    const run_result r = simulation(sc, simulation::seeker_for(sc, "adaptive")).run(true);
+    EXPECT_TRUE(r.summary.success) << preset << " seed " << seed;
+    EXPECT_GT(static_cast<int>(r.records.size()), slots);
+    double turned = 0.0;
+    for (int i = 1; i <= slots && i < static_cast<int>(r.records.size()); ++i)
+        turned += std::remainder(r.records[i].heading_rad - r.records[i - 1].heading_rad,
+                                 2.0 * M_PI);
+    return turned;
+}
+
+} // namespace
+
+TEST(adaptive, a_turn_limited_acquisition_turns_toward_the_emitter)
+{
+    // The acquisition turn starts to the left; the side test reverses it when the
+    // Doppler along the first degrees of arc says the emitter is on the right. After
+    // 8 s (at most about 100 deg at 13 deg/s) the vehicle has turned toward the emitter
+    // whichever side it is on, for a fixed wing at 25 m/s and a plain 10 deg/s limit.
+    for (const char* preset : { "fixedwing25", "reference" })
+        for (double rel_deg : { -120.0, -60.0, 60.0, 120.0 })
+            for (std::uint64_t seed : { 1, 2 }) {
+                const double rate = std::string(preset) == "reference" ? 10.0 * DEG : 0.0;
+                const double t = turned_after(preset, rate, rel_deg * DEG, seed, 160);
+                EXPECT_GT(t * rel_deg, 0.0)
+                    << preset << " " << rel_deg << " seed " << seed;
+                EXPECT_GT(std::abs(t), 30.0 * DEG)
+                    << preset << " " << rel_deg << " seed " << seed;
+            }
+}

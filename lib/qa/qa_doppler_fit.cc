@@ -11,6 +11,7 @@
 #include <gr-rfseek/world.h>
 #include <gtest/gtest.h>
 #include <cmath>
+#include <random>
 #include <vector>
 
 using namespace gr::rfseek;
@@ -173,4 +174,59 @@ TEST(doppler_fit, three_probes_resolve_flying_away)
                 << err_deg;
         }
     }
+}
+
+namespace {
+
+// An arc turned at 13 deg/s from heading 0 to `arc` (left), a sample per 0.05 s, with
+// white frequency noise of sigma Hz (seeded).
+std::vector<doppler_sample>
+arc_samples(double arc, double beta, double sigma, unsigned seed)
+{
+    std::mt19937 g(seed);
+    std::normal_distribution<double> n(0.0, sigma);
+    std::vector<doppler_sample> s;
+    const double step = 13.0 * DEG * 0.05;
+    for (int i = 0; i * step <= arc; ++i)
+        s.push_back({ i * step, 0.05 * i, model(i * step, beta, 0.05 * i) + n(g) });
+    return s;
+}
+
+} // namespace
+
+TEST(doppler_fit, side_test_says_which_way_to_turn_from_a_short_arc)
+{
+    // 20 deg of arc at 10 m/s (A = 67 Hz), 1 Hz of noise: the side of the heading flown
+    // at the end of the arc, for emitters anywhere but near ahead or behind, past the
+    // seeker's threshold (SIDE_Z^2 = 9).
+    const double arc = 20.0 * DEG;
+    for (double rel_deg : { -150.0, -120.0, -90.0, -45.0, 45.0, 90.0, 120.0, 150.0 })
+        for (unsigned seed : { 1u, 2u, 3u }) {
+            const double beta = world::wrap(arc + rel_deg * DEG);
+            const doppler_side_result r =
+                doppler_side(arc_samples(arc, beta, 1.0, seed), arc, A);
+            ASSERT_TRUE(r.ok);
+            EXPECT_EQ(r.side, rel_deg > 0 ? 1 : -1) << rel_deg << " seed " << seed;
+            EXPECT_GT(r.statistic, 9.0) << rel_deg << " seed " << seed;
+        }
+    // Without noise the grid's best bearing is the emitter's (within the grid's step).
+    const double beta = world::wrap(arc - 150.0 * DEG);
+    const doppler_side_result r = doppler_side(arc_samples(arc, beta, 0.0, 1), arc, A);
+    EXPECT_LT(std::abs(world::wrap(r.bearing_rad - beta)), 0.5 * DEG);
+    EXPECT_LT(r.residual_rms_hz, 0.2);
+}
+
+TEST(doppler_fit, side_test_is_undecided_ahead_and_behind_and_needs_samples)
+{
+    // Straight ahead or behind the heading, both sides fit alike: no decision.
+    const double arc = 15.0 * DEG;
+    for (double rel_deg : { 0.0, 180.0 })
+        for (unsigned seed : { 1u, 2u, 3u }) {
+            const doppler_side_result r = doppler_side(
+                arc_samples(arc, world::wrap(arc + rel_deg * DEG), 1.0, seed), arc, A);
+            ASSERT_TRUE(r.ok);
+            EXPECT_LT(r.statistic, 9.0) << rel_deg << " seed " << seed;
+        }
+    EXPECT_FALSE(doppler_side({ { 0.0, 0.0, 1.0 }, { 0.1, 0.05, 2.0 } }, 0.0, A).ok);
+    EXPECT_FALSE(doppler_side(arc_samples(arc, 1.0, 0.0, 1), 0.0, 0.0).ok);
 }

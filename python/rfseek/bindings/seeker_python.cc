@@ -4,7 +4,7 @@
  */
 
 /* BINDTOOL_HEADER_FILE(seeker.h) */
-/* BINDTOOL_HEADER_FILE_HASH(a4c6931118e8d0c8095a254ab2707409) */
+/* BINDTOOL_HEADER_FILE_HASH(2f8b9a7afed7c4447ce2b66282cd2c29) */
 
 #include "kwargs.h"
 #include <gr-rfseek/seeker.h>
@@ -116,7 +116,7 @@ void bind_seeker_config(py::module& m)
        "adaptive: slots flown straight on before an acquisition is retried");
     RW(adaptive_track_slots, "adaptive: slots per probe segment (4 per cycle)");
     RW(adaptive_turn_share,
-       "adaptive, coordinated turns: the largest share of a probe cycle spent reversing "
+       "adaptive, any turn limit: the largest share of a probe cycle spent reversing "
        "(in (0, 1])");
     RW(adaptive_gain, "adaptive: fraction of the measured error removed per cycle");
     RW(adaptive_delta_min_rad, "adaptive: smallest probe half-angle (rad)");

@@ -268,9 +268,10 @@ private:
     // add headings to the fit).
     void choose_side()
     {
-        const doppler_side_result r = doppler_side(d_side_samples, d_model, d_amp);
-        if (!r.ok || static_cast<int>(d_side_samples.size()) < ACQ_MIN_SAMPLES ||
-            !(r.statistic > SIDE_Z * SIDE_Z)) {
+        const bool enough = static_cast<int>(d_side_samples.size()) >= ACQ_MIN_SAMPLES;
+        const doppler_side_result r =
+            enough ? doppler_side(d_side_samples, d_model, d_amp) : doppler_side_result{};
+        if (!r.ok || !(r.statistic > SIDE_Z * SIDE_Z)) {
             d_side_known = d_arc >= SIDE_MAX;
             return;
         }

@@ -106,6 +106,10 @@ struct RFSEEK_API seeker_config {
     double ground_track_gate = 1.0;
     //! Random walk of the bearing rate in its Kalman filter (rad/s per sqrt(s)).
     double ground_track_rate_walk = 5.0e-5;
+    //! `paper` and `paper_no_circle`: fly Stage 2's probes around theta plus the same
+    //! crab (eq. 5 then measures the bearing around the heading flown); false: the
+    //! paper's Stage 2, an air heading at theta.
+    bool paper_ground_track = false;
     // Arrival without truth (docs/seeker.md "Arrival and location"), any strategy.
     //! Detect the overflight, loiter on an orbit and locate the emitter; false: fly the
     //! strategy only (the paper's runs end at the simulator's d_v).

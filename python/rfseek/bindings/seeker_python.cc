@@ -4,7 +4,7 @@
  */
 
 /* BINDTOOL_HEADER_FILE(seeker.h) */
-/* BINDTOOL_HEADER_FILE_HASH(2f8b9a7afed7c4447ce2b66282cd2c29) */
+/* BINDTOOL_HEADER_FILE_HASH(0e677aba1fdc8d845a1ca61283d64e1c) */
 
 #include "kwargs.h"
 #include <gr-rfseek/seeker.h>
@@ -137,6 +137,9 @@ void bind_seeker_config(py::module& m)
        "ground track: the crab moves while the bearing rate exceeds this many std");
     RW(ground_track_rate_walk,
        "ground track: random walk of the bearing rate in its filter (rad/s/sqrt(s))");
+    RW(paper_ground_track,
+       "paper, paper_no_circle: fly Stage 2's probes around theta plus the ground-track "
+       "crab (off: the paper's air heading at theta)");
     bind_arrival_fields(c);
 #undef RW
     c.def("validate",

@@ -192,6 +192,8 @@ private:
             d_track.reset();
             d_crab = 0.0;
         } else if (in_range) {
+            // No standard error is passed (the filter's floor): the scatter its own
+            // innovations show sets the bearing's variance, as gusts dominate it.
             d_crab = d_track.update(d_step_t_sum / d_step_t_n, bearing, 0.0);
         }
     }

@@ -141,44 +141,49 @@ TEST(ground_track, limits_and_bad_input)
     EXPECT_FALSE(g.started());
 }
 
-// The paper's Stage 2 with paper_ground_track: in a steady crosswind (no gusts) the
-// crab it flies over the last kilometre is the wind triangle's, and its flight is
-// shorter than the paper's own; in calm air the crab stays near 0. Off, nothing moves.
+// The paper's Stage 2 (`paper`, `paper_no_circle`) with paper_ground_track: in a steady
+// crosswind (no gusts) the crab it flies over the last kilometre is the wind triangle's,
+// and its flight is shorter than without; in calm air the crab stays near 0. Off, no
+// crab.
 TEST(ground_track, paper_option_flies_the_wind_triangle)
 {
-    for (double side : { 1.0, -1.0 }) {
-        scenario sc;
-        sc.seed = 21;
-        sc.start_angle_rad = 0.0;         // the line of sight points to -x
-        sc.wind_speed_mps = 6.0;          // 0.6 of the airspeed, across it
-        sc.wind_to_rad = side * M_PI / 2; // toward +y or -y
-        seeker_config off = simulation::seeker_for(sc, "paper");
-        seeker_config on = off;
-        on.paper_ground_track = true;
-        const run_result a = simulation(sc, off).run(true);
-        const run_result b = simulation(sc, on).run(true);
-        ASSERT_TRUE(a.summary.success && b.summary.success);
-        EXPECT_LT(b.summary.straight_ratio, a.summary.straight_ratio - 0.05)
-            << "side " << side;
-        // The crab flown (heading commanded - theta, over whole probe steps) against
-        // the wind triangle at each slot's line of sight, from 1300 m to 300 m.
-        double crab = 0.0, expected = 0.0;
-        int n = 0;
-        for (const slot_record& r : b.records) {
-            const double range = std::hypot(r.x_m, r.y_m);
-            if (r.stage != 2 || range > 1300.0 || range < 300.0)
-                continue;
-            const double beta = std::atan2(-r.y_m, -r.x_m);
-            const double w_perp = sc.wind_speed_mps * std::sin(*sc.wind_to_rad - beta);
-            crab += wrap(r.cmd_heading_rad - r.theta_est_rad);
-            expected += std::asin(-w_perp / V);
-            ++n;
+    for (const char* strategy : { "paper", "paper_no_circle" })
+        for (double side : { 1.0, -1.0 }) {
+            scenario sc;
+            sc.seed = 21;
+            sc.start_angle_rad = 0.0;         // the line of sight points to -x
+            sc.wind_speed_mps = 6.0;          // 0.6 of the airspeed, across it
+            sc.wind_to_rad = side * M_PI / 2; // toward +y or -y
+            seeker_config off = simulation::seeker_for(sc, strategy);
+            seeker_config on = off;
+            on.paper_ground_track = true;
+            const run_result a = simulation(sc, off).run(true);
+            const run_result b = simulation(sc, on).run(true);
+            ASSERT_TRUE(a.summary.success && b.summary.success);
+            EXPECT_LT(b.summary.straight_ratio, a.summary.straight_ratio - 0.05)
+                << strategy << ", side " << side;
+            // The crab flown (heading commanded - theta, over whole probe steps) against
+            // the wind triangle at each slot's line of sight, from 1300 m to 300 m.
+            double crab = 0.0, expected = 0.0;
+            int n = 0;
+            for (const slot_record& r : b.records) {
+                const double range = std::hypot(r.x_m, r.y_m);
+                if (r.stage != 2 || range > 1300.0 || range < 300.0)
+                    continue;
+                const double beta = std::atan2(-r.y_m, -r.x_m);
+                const double w_perp =
+                    sc.wind_speed_mps * std::sin(*sc.wind_to_rad - beta);
+                crab += wrap(r.cmd_heading_rad - r.theta_est_rad);
+                expected += std::asin(-w_perp / V);
+                ++n;
+            }
+            ASSERT_GT(n, 100);
+            EXPECT_NEAR(crab / n, expected / n, 4.0 * DEG)
+                << strategy << ", side " << side; // from below
+            // Off: the paper's Stage 2 flies theta + delta_k and theta - delta_k alike.
+            EXPECT_LT(std::abs(mean_offset(a)), 0.5 * DEG)
+                << strategy << ", side " << side;
         }
-        ASSERT_GT(n, 100);
-        EXPECT_NEAR(crab / n, expected / n, 4.0 * DEG) << "side " << side; // from below
-        // Off: the paper's Stage 2 flies theta + delta_k and theta - delta_k alike.
-        EXPECT_LT(std::abs(mean_offset(a)), 0.5 * DEG) << "side " << side;
-    }
     // Calm air: the crab stays within a few degrees and the flight within 1 % of the
     // paper's.
     scenario calm;

@@ -176,7 +176,8 @@ public:
 private:
     // paper_ground_track (docs/seeker.md "Guidance over the ground"): eq. 5's step moves
     // theta toward the bearing the probes measured around theta + crab (the paper's
-    // step exactly when the crab is 0), and each step's bearing feeds the crab's filter.
+    // step when the crab is 0 and the difference within its range; capped beyond), and
+    // each step's bearing feeds the crab's filter.
     // A probe difference beyond its range (|sin| > 1: noise or a bearing far off) says
     // nothing of the bearing's rotation and is left out; an error of theta beyond
     // CRAB_RESET_RAD (the emitter passed or lost) makes the crab, measured on the old

@@ -159,6 +159,17 @@ void seeking_controller_impl::handle_meas(const pmt::pmt_t& msg)
         m.heading_rad = d_nav_heading;
     }
     ++d_meas;
+    if (m.has_heading) {
+        d_seen_heading = true;
+    } else if (d_wait_heading && !d_seen_heading) {
+        // No heading yet: the strategy would start from an assumed one (a straight
+        // line away from the emitter if it is wrong). The vehicle keeps its course.
+        if (d_waiting++ == 0)
+            d_logger->info("waiting for the vehicle's first heading (a 'heading' in meas "
+                           "or a nav report) before seeking; measurements until then "
+                           "are counted (waiting_count()) and get no cmd");
+        return;
+    }
     if (!m.valid)
         ++d_invalid;
 
@@ -274,6 +285,24 @@ std::uint64_t seeking_controller_impl::malformed_count() const
 {
     gr::thread::scoped_lock lock(setlock());
     return d_malformed;
+}
+
+void seeking_controller_impl::set_wait_for_heading(bool wait)
+{
+    gr::thread::scoped_lock lock(d_setlock);
+    d_wait_heading = wait;
+}
+
+bool seeking_controller_impl::wait_for_heading() const
+{
+    gr::thread::scoped_lock lock(setlock());
+    return d_wait_heading;
+}
+
+std::uint64_t seeking_controller_impl::waiting_count() const
+{
+    gr::thread::scoped_lock lock(setlock());
+    return d_waiting;
 }
 
 } // namespace rfseek

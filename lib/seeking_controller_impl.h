@@ -28,6 +28,9 @@ public:
     std::uint64_t malformed_count() const override;
     int status() const override;
     bool done() const override;
+    void set_wait_for_heading(bool wait) override;
+    bool wait_for_heading() const override;
+    std::uint64_t waiting_count() const override;
     emitter_location location() const override;
 
 private:
@@ -42,6 +45,9 @@ private:
     std::unique_ptr<seeker> d_seeker;
     bool d_have_nav = false;
     double d_nav_heading = 0.0;
+    bool d_wait_heading = false; // set_wait_for_heading
+    bool d_seen_heading = false; // a meas has had a heading (tag or nav)
+    std::uint64_t d_waiting = 0;
     std::uint64_t d_meas = 0, d_invalid = 0, d_malformed = 0;
     std::set<std::string> d_logged;
 

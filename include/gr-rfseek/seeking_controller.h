@@ -64,6 +64,19 @@ public:
     virtual emitter_location location() const = 0;
     //! self_arrival: the mission is over (located, or given up without a fix).
     virtual bool done() const = 0;
+
+    /*!
+     * Wait for the vehicle's first heading before seeking (default false). While neither
+     * a meas has carried a heading nor a nav report has come, each meas is counted
+     * (waiting_count) and answered by no cmd: the vehicle keeps the course it flies, and
+     * the strategy starts from its true heading, not from one it would have to assume.
+     * For flows whose headings come on "nav" (a live radio, two processes, a recording);
+     * a lockstep source without heading tags would wait for ever.
+     */
+    virtual void set_wait_for_heading(bool wait) = 0;
+    virtual bool wait_for_heading() const = 0;
+    //! meas messages set aside while waiting for the first heading.
+    virtual std::uint64_t waiting_count() const = 0;
 };
 
 } // namespace rfseek

@@ -13,6 +13,7 @@ import shutil
 import subprocess
 import sys
 import tempfile
+import time
 
 import numpy as np
 import pmt
@@ -206,6 +207,56 @@ class qa_closed_loop(gr_unittest.TestCase):
             for v in entry.values():
                 if isinstance(v, float):
                     self.assertTrue(math.isfinite(v))
+
+    def test_waits_for_the_first_heading(self):
+        # Beacons before the vehicle's first report: without waiting, paper_no_circle
+        # starts Stage 2 from an assumed heading 0; waiting, from the reported one.
+        def fly(wait):
+            ctl = rfseek.seeking_controller(rfseek.seeker_config(strategy="paper_no_circle"))
+            self.assertFalse(ctl.wait_for_heading())
+            ctl.set_wait_for_heading(wait)
+            self.assertEqual(ctl.wait_for_heading(), wait)
+            cmds = blocks.message_debug()
+            tb = gr.top_block()
+            tb.msg_connect(ctl, "cmd", cmds, "store")
+            tb.start()
+
+            def until(cond):
+                for _ in range(1000):
+                    if cond():
+                        return
+                    time.sleep(0.01)
+                self.fail("the controller did not take its messages")
+
+            for k in (0, 1):
+                ctl._post(pmt.intern("meas"), meas(k, 50.0))
+            until(lambda: ctl.meas_count() == 2)
+            # nav and meas are separate queues: beacons until the report has been read.
+            ctl._post(pmt.intern("nav"), pmt.to_pmt({"heading": 2.0}))
+            k = 2
+            while k < 100 and cmds.num_messages() < 3:
+                ctl._post(pmt.intern("meas"), meas(k, 50.0))
+                k += 1
+                until(lambda: ctl.meas_count() == k)
+            tb.stop()
+            tb.wait()
+            return ctl, [pmt.to_python(cmds.get_message(i))
+                         for i in range(cmds.num_messages())]
+
+        delta = rfseek.seeker_config().delta_rad
+        ctl, answered = fly(False)
+        self.assertEqual([a["slot"] for a in answered], [0, 1, 2])
+        self.assertAlmostEqual(answered[0]["heading"], 0.0 + delta)
+        self.assertEqual(ctl.waiting_count(), 0)
+        ctl, answered = fly(True)
+        # Slots 0 and 1 wait; the first answer is to the first beacon after the report.
+        first = answered[0]["slot"]
+        self.assertGreaterEqual(first, 2)
+        self.assertEqual([a["slot"] for a in answered], list(range(first, first + 3)))
+        self.assertAlmostEqual(answered[0]["heading"], 2.0 + delta)
+        self.assertEqual(ctl.waiting_count(), first)
+        self.assertEqual(ctl.meas_count(), first + 3)
+        self.assertEqual(ctl.invalid_count(), 0)
 
     def test_bad_configuration_raises_value_error(self):
         with self.assertRaisesRegex(ValueError, "seeker_config.strategy"):

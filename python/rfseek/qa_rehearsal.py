@@ -74,7 +74,8 @@ class qa_rehearsal(gr_unittest.TestCase):
                     proc.kill()
         self.assertEqual(beacon.returncode, 0, b_err)
         self.assertEqual(receiver.returncode, 0, r_err)
-        self.assertRegex(b_err, r"rfseek-live: arrived, \d+ m flown")
+        self.assertRegex(b_err, r"rfseek-live: arrived, \d+ m flown",
+                         "beacon:\n%s\nreceiver:\n%s" % (b_err, r_err))
         self.assertRegex(b_err, r"\((\d+) commands late")
         self.assertGreater(int(re.search(r"\((\d+) commands late", b_err).group(1)), 100)
         m = re.search(r"rfseek-live: (\d+) measurements", r_err)

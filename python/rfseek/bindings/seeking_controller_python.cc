@@ -4,7 +4,7 @@
  */
 
 /* BINDTOOL_HEADER_FILE(seeking_controller.h) */
-/* BINDTOOL_HEADER_FILE_HASH(e2b44d625418413a36d0ccbb5df31ff4) */
+/* BINDTOOL_HEADER_FILE_HASH(4d70ec2e3e4af8a08f975bc5b5259a9d) */
 
 #include <gr-rfseek/seeking_controller.h>
 #include <pybind11/pybind11.h>
@@ -43,5 +43,16 @@ void bind_seeking_controller(py::module& m)
         .def("location", &seeking_controller::location, "the latest fix")
         .def("done",
              &seeking_controller::done,
-             "self arrival: the mission is over (located, or given up)");
+             "self arrival: the mission is over (located, or given up)")
+        .def("set_wait_for_heading",
+             &seeking_controller::set_wait_for_heading,
+             py::arg("wait"),
+             "Wait for the vehicle's first heading (meas tag or nav report) before "
+             "seeking; until then each meas is counted and gets no cmd.")
+        .def("wait_for_heading",
+             &seeking_controller::wait_for_heading,
+             "Whether it waits for the first heading before seeking.")
+        .def("waiting_count",
+             &seeking_controller::waiting_count,
+             "meas messages set aside while waiting for the first heading.");
 }

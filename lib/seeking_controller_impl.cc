@@ -159,9 +159,7 @@ void seeking_controller_impl::handle_meas(const pmt::pmt_t& msg)
         m.heading_rad = d_nav_heading;
     }
     ++d_meas;
-    if (m.has_heading) {
-        d_seen_heading = true;
-    } else if (d_wait_heading && !d_seen_heading) {
+    if (!d_seeking && !m.has_heading && d_wait_heading) {
         // No heading yet: the strategy would start from an assumed one (a straight
         // line away from the emitter if it is wrong). The vehicle keeps its course.
         if (d_waiting++ == 0)
@@ -170,6 +168,11 @@ void seeking_controller_impl::handle_meas(const pmt::pmt_t& msg)
                            "are counted (waiting_count()) and get no cmd");
         return;
     }
+    if (!d_seeking && d_waiting > 0)
+        d_logger->info("first heading after {} measurements: seeking", d_waiting);
+    // Once the strategy has started, waiting no longer applies (a later switch to
+    // waiting must not stop a flight).
+    d_seeking = true;
     if (!m.valid)
         ++d_invalid;
 

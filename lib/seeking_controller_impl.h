@@ -46,7 +46,7 @@ private:
     bool d_have_nav = false;
     double d_nav_heading = 0.0;
     bool d_wait_heading = false; // set_wait_for_heading
-    bool d_seen_heading = false; // a meas has had a heading (tag or nav)
+    bool d_seeking = false;      // a meas has reached the strategy
     std::uint64_t d_waiting = 0;
     std::uint64_t d_meas = 0, d_invalid = 0, d_malformed = 0;
     std::set<std::string> d_logged;

@@ -74,33 +74,45 @@ def main(argv=None):
     p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     p.add_argument("--preset", default=None,
                    help="take the airspeed, carrier, gusts, slot and turn rate from this "
-                        "scenario preset (rfseek.scenario.presets())")
-    p.add_argument("--speed", type=float, default=10.0, help="airspeed, m/s")
-    p.add_argument("--carrier", type=float, default=2e9, help="carrier, Hz")
-    p.add_argument("--gust", type=float, default=1.0, help="gust std per axis, m/s")
-    p.add_argument("--tau", type=float, default=5.0, help="gust correlation time, s")
+                        "scenario preset (rfseek.scenario.presets()); options given "
+                        "explicitly win")
+    p.add_argument("--speed", type=float, default=None, help="airspeed, m/s (10)")
+    p.add_argument("--carrier", type=float, default=None, help="carrier, Hz (2e9)")
+    p.add_argument("--gust", type=float, default=None, help="gust std per axis, m/s (1)")
+    p.add_argument("--tau", type=float, default=None, help="gust correlation time, s (5)")
     p.add_argument("--noise", type=float, default=2.5,
                    help="white frequency noise per beacon, Hz (default 2.5)")
-    p.add_argument("--slot", type=float, default=0.05, help="beacon period, s")
-    p.add_argument("--turn-rate", type=float, default=30.0,
-                   help="turn rate between probes, deg/s (0: instant)")
+    p.add_argument("--slot", type=float, default=None, help="beacon period, s (0.05)")
+    p.add_argument("--turn-rate", type=float, default=None,
+                   help="turn rate between probes, deg/s (30; 0: instant)")
     p.add_argument("--slots", default="20", help="beacons per probe, comma-separated")
     p.add_argument("--deltas", default="5,10,20", help="probe half-angles, deg")
     a = p.parse_args(argv)
+    given = {"speed": 10.0, "carrier": 2e9, "gust": 1.0, "tau": 5.0, "slot": 0.05,
+             "turn_rate": 30.0}
     if a.preset:
         from gnuradio import rfseek
         sc = rfseek.scenario()
         try:
             sc.apply_preset(a.preset)
         except ValueError as e:
-            p.error(str(e))
-        a.speed, a.carrier, a.slot = sc.speed_mps, sc.carrier_hz, sc.slot_period_s
-        a.gust, a.tau = sc.wind_gust_mps, sc.wind_gust_tau_s
-        a.turn_rate = math.degrees(sc.turn_rate_rad_per_s)
-    for name, v, lo in (("--speed", a.speed, 0.0), ("--carrier", a.carrier, 0.0),
-                        ("--tau", a.tau, 0.0), ("--slot", a.slot, 0.0)):
-        if not v > lo:
-            p.error("%s must be > %g, got %g" % (name, lo, v))
+            p.error("--preset: %s" % e)
+        rate = sc.turn_rate_rad_per_s
+        if sc.bank_limit_rad > 0.0:
+            # A bank-limited airframe: its steady rate at the bank limit (the roll in
+            # and out is not modelled here), or the plain limit if that is lower.
+            bank_rate = 9.80665 * math.tan(sc.bank_limit_rad) / sc.speed_mps
+            rate = min(rate, bank_rate) if rate > 0.0 else bank_rate
+        given.update(speed=sc.speed_mps, carrier=sc.carrier_hz, gust=sc.wind_gust_mps,
+                     tau=sc.wind_gust_tau_s, slot=sc.slot_period_s,
+                     turn_rate=math.degrees(rate))
+    for key, value in given.items():
+        if getattr(a, key) is None:
+            setattr(a, key, value)
+    for name, v in (("--speed", a.speed), ("--carrier", a.carrier), ("--tau", a.tau),
+                    ("--slot", a.slot)):
+        if not v > 0.0:
+            p.error("%s must be > 0, got %g" % (name, v))
     for name, v in (("--gust", a.gust), ("--noise", a.noise), ("--turn-rate", a.turn_rate)):
         if not v >= 0.0:
             p.error("%s must be >= 0, got %g" % (name, v))
@@ -108,12 +120,16 @@ def main(argv=None):
         p.error("--gust and --noise are both 0: nothing limits the fit")
     try:
         slot_list = [int(v) for v in a.slots.split(",")]
+    except ValueError:
+        p.error("--slots must be comma-separated integers >= 2, got %r" % a.slots)
+    if not slot_list or min(slot_list) < 2:
+        p.error("--slots must be comma-separated integers >= 2, got %r" % a.slots)
+    try:
         delta_list = floats(a.deltas)
     except ValueError:
-        p.error("--slots and --deltas are comma-separated numbers")
-    if not slot_list or min(slot_list) < 2 or not delta_list or not all(
-            0.0 < d < 90.0 for d in delta_list):
-        p.error("--slots: integers >= 2; --deltas: in (0, 90) deg")
+        p.error("--deltas must be comma-separated degrees in (0, 90), got %r" % a.deltas)
+    if not delta_list or not all(0.0 < d < 90.0 for d in delta_list):
+        p.error("--deltas must be comma-separated degrees in (0, 90), got %r" % a.deltas)
     lam = C / a.carrier
     amp, gust_hz = a.speed / lam, a.gust / lam
     print("f_d,max %.1f Hz, gust along the line of sight %.1f Hz (%g m/s) of %g s, white "

@@ -66,12 +66,14 @@ public:
     virtual bool done() const = 0;
 
     /*!
-     * Wait for the vehicle's first heading before seeking (default false). While neither
-     * a meas has carried a heading nor a nav report has come, each meas is counted
-     * (waiting_count) and answered by no cmd: the vehicle keeps the course it flies, and
-     * the strategy starts from its true heading, not from one it would have to assume.
-     * For flows whose headings come on "nav" (a live radio, two processes, a recording);
-     * a lockstep source without heading tags would wait for ever.
+     * Wait for the vehicle's first heading before seeking (default false). Until a meas
+     * carries a heading or a nav report has come, each meas is counted (waiting_count)
+     * and answered by no cmd, telemetry or status: the vehicle keeps the course it
+     * flies, and the strategy starts from its true heading, not from one it would have
+     * to assume. It applies only before the strategy has started: switched on later, it
+     * changes nothing. For flows whose headings come on "nav" (a live radio, two
+     * processes, a recording); a lockstep source without heading tags would wait for
+     * ever.
      */
     virtual void set_wait_for_heading(bool wait) = 0;
     virtual bool wait_for_heading() const = 0;

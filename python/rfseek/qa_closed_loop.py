@@ -211,7 +211,7 @@ class qa_closed_loop(gr_unittest.TestCase):
     def test_waits_for_the_first_heading(self):
         # Beacons before the vehicle's first report: without waiting, paper_no_circle
         # starts Stage 2 from an assumed heading 0; waiting, from the reported one.
-        def fly(wait):
+        def fly(wait, first_heading="nav", switch_at=None):
             ctl = rfseek.seeking_controller(rfseek.seeker_config(strategy="paper_no_circle"))
             self.assertFalse(ctl.wait_for_heading())
             ctl.set_wait_for_heading(wait)
@@ -221,23 +221,31 @@ class qa_closed_loop(gr_unittest.TestCase):
             tb.msg_connect(ctl, "cmd", cmds, "store")
             tb.start()
 
-            def until(cond):
+            def post(k, heading=None):
+                # One beacon, then until the controller has taken it and every cmd it
+                # answered with is stored (message_debug stores on its own thread).
+                ctl._post(pmt.intern("meas"), meas(k, 50.0, heading=heading))
                 for _ in range(1000):
-                    if cond():
+                    if (ctl.meas_count() == k + 1 and
+                            cmds.num_messages() == ctl.meas_count() - ctl.waiting_count()):
                         return
                     time.sleep(0.01)
                 self.fail("the controller did not take its messages")
 
             for k in (0, 1):
-                ctl._post(pmt.intern("meas"), meas(k, 50.0))
-            until(lambda: ctl.meas_count() == 2)
-            # nav and meas are separate queues: beacons until the report has been read.
-            ctl._post(pmt.intern("nav"), pmt.to_pmt({"heading": 2.0}))
+                post(k)
+            if switch_at is not None:  # waiting switched on once seeking has begun
+                ctl.set_wait_for_heading(True)
             k = 2
-            while k < 100 and cmds.num_messages() < 3:
-                ctl._post(pmt.intern("meas"), meas(k, 50.0))
+            if first_heading == "meas":
+                post(k, heading=2.0)
                 k += 1
-                until(lambda: ctl.meas_count() == k)
+            else:
+                # nav and meas are separate queues: beacons until the report is read.
+                ctl._post(pmt.intern("nav"), pmt.to_pmt({"heading": 2.0}))
+            while k < 100 and cmds.num_messages() < 3:
+                post(k)
+                k += 1
             tb.stop()
             tb.wait()
             return ctl, [pmt.to_python(cmds.get_message(i))
@@ -248,15 +256,23 @@ class qa_closed_loop(gr_unittest.TestCase):
         self.assertEqual([a["slot"] for a in answered], [0, 1, 2])
         self.assertAlmostEqual(answered[0]["heading"], 0.0 + delta)
         self.assertEqual(ctl.waiting_count(), 0)
-        ctl, answered = fly(True)
-        # Slots 0 and 1 wait; the first answer is to the first beacon after the report.
-        first = answered[0]["slot"]
-        self.assertGreaterEqual(first, 2)
-        self.assertEqual([a["slot"] for a in answered], list(range(first, first + 3)))
-        self.assertAlmostEqual(answered[0]["heading"], 2.0 + delta)
-        self.assertEqual(ctl.waiting_count(), first)
-        self.assertEqual(ctl.meas_count(), first + 3)
-        self.assertEqual(ctl.invalid_count(), 0)
+        for first_heading in ("nav", "meas"):
+            ctl, answered = fly(True, first_heading)
+            # Slots 0 and 1 wait; the first answer is to the first beacon with a heading.
+            first = answered[0]["slot"]
+            if first_heading == "meas":
+                self.assertEqual(first, 2)
+            self.assertGreaterEqual(first, 2)
+            self.assertEqual([a["slot"] for a in answered], list(range(first, first + 3)))
+            self.assertAlmostEqual(answered[0]["heading"], 2.0 + delta)
+            self.assertEqual(ctl.waiting_count(), first)
+            self.assertEqual(ctl.meas_count(), first + 3)
+            self.assertEqual(ctl.invalid_count(), 0)
+        # Switched on after the strategy has started, waiting changes nothing.
+        ctl, answered = fly(False, switch_at=2)
+        self.assertTrue(ctl.wait_for_heading())
+        self.assertEqual([a["slot"] for a in answered], [0, 1, 2])
+        self.assertEqual(ctl.waiting_count(), 0)
 
     def test_bad_configuration_raises_value_error(self):
         with self.assertRaisesRegex(ValueError, "seeker_config.strategy"):

@@ -54,6 +54,23 @@ class qa_gust_probe_bound(gr_unittest.TestCase):
             self.assertGreater(gls, prev)
             prev = gls
 
+    def test_the_best_fit_is_the_gls_covariance(self):
+        # Independently: the generalised least squares covariance (X' S^-1 X)^-1, with
+        # the gust (Gauss-Markov) and white-noise covariance S built here.
+        import numpy as np
+        for tau, rate in ((15.0, 30.0), (5.0, 0.0)):
+            d, slots, dt = math.radians(10), 20, 0.05
+            u = gpb.cycle_headings(d, slots, math.radians(rate), dt)
+            t = np.arange(len(u)) * dt
+            x = np.column_stack([A * np.sin(u), np.ones(len(u)), t - t.mean()])
+            cov = 13.3 ** 2 * np.exp(-np.abs(np.subtract.outer(t, t)) / tau) + \
+                2.5 ** 2 * np.eye(len(u))
+            expected = math.sqrt(np.linalg.inv(x.T @ np.linalg.inv(cov) @ x)[0, 0])
+            ols, gls = gpb.sin_error_std(A, d, slots, dt, math.radians(rate), 13.3, tau,
+                                         2.5)
+            self.assertAlmostEqual(gls, expected, delta=1e-9 * expected)
+            self.assertGreater(ols, gls * 1.01)  # correlated gusts: the plain fit loses
+
     def test_turns_take_the_stated_time(self):
         h = gpb.cycle_headings(math.radians(10), 20, math.radians(30), 0.05)
         self.assertEqual(len(h), 80)
@@ -73,7 +90,8 @@ class qa_gust_probe_bound(gr_unittest.TestCase):
                                      0.05, math.radians(30), 1.0 / (gpb.C / 2e9), 5.0, 2.5)
         self.assertIn("| %.3f | %.3f |" % (ols, gls), row[0])
         for bad, name in ((["--gust", "-1"], "--gust"), (["--tau", "0"], "--tau"),
-                          (["--deltas", "95"], "--deltas")):
+                          (["--deltas", "95"], "--deltas"), (["--slots", "1"], "--slots"),
+                          (["--slots", "x"], "--slots")):
             run = subprocess.run([sys.executable, SCRIPT] + bad, capture_output=True,
                                  text=True, timeout=60)
             self.assertEqual(run.returncode, 2)

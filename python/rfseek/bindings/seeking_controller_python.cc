@@ -4,7 +4,7 @@
  */
 
 /* BINDTOOL_HEADER_FILE(seeking_controller.h) */
-/* BINDTOOL_HEADER_FILE_HASH(4d70ec2e3e4af8a08f975bc5b5259a9d) */
+/* BINDTOOL_HEADER_FILE_HASH(625f15f80efb35d8d87031e212d00ee3) */
 
 #include <gr-rfseek/seeking_controller.h>
 #include <pybind11/pybind11.h>

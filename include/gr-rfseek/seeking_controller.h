@@ -26,7 +26,8 @@ namespace rfseek {
  * In "meas": dicts from doppler_estimator {slot, freq_hz, valid, heading?, snr_db?,
  * power_db?, time?}. In "nav": dicts {heading} from the vehicle; the heading of a meas is
  * used when present, else the latest nav heading. Every meas with a usable slot is
- * answered by one "cmd" {slot, heading, stage} and one "telemetry" {slot, stage,
+ * answered (but while waiting for the first heading: set_wait_for_heading below)
+ * by one "cmd" {slot, heading, stage} and one "telemetry" {slot, stage,
  * theta_est, update, holding, accepted, filtered_freq_hz, freq_hz, valid}. Invalid
  * measurements are ignored by the strategy (a cmd is still sent so a lockstep source
  * keeps going); after a run of them the course is held. Malformed messages are logged

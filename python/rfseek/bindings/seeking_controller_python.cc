@@ -4,7 +4,7 @@
  */
 
 /* BINDTOOL_HEADER_FILE(seeking_controller.h) */
-/* BINDTOOL_HEADER_FILE_HASH(625f15f80efb35d8d87031e212d00ee3) */
+/* BINDTOOL_HEADER_FILE_HASH(8c053735c6a7d89477cc7c7a4a077495) */
 
 #include <gr-rfseek/seeking_controller.h>
 #include <pybind11/pybind11.h>

@@ -159,7 +159,6 @@ public:
                 (d_prev.ph == phase::plus ? d_sum_plus : d_sum_minus) += f;
                 ++(d_prev.ph == phase::plus ? d_n_plus : d_n_minus);
                 d_step_t_sum += m.time_s;
-                ++d_step_t_n;
             }
         }
 
@@ -195,7 +194,7 @@ private:
         } else if (in_range) {
             // No standard error is passed (the filter's floor): the scatter its own
             // innovations show sets the bearing's variance, as gusts dominate it.
-            d_crab = d_track.update(d_step_t_sum / d_step_t_n, bearing, 0.0);
+            d_crab = d_track.update(d_step_t_sum / (d_n_plus + d_n_minus), bearing, 0.0);
         }
     }
 
@@ -226,7 +225,6 @@ private:
         d_sum_plus = d_sum_minus = 0.0;
         d_n_plus = d_n_minus = 0;
         d_step_t_sum = 0.0;
-        d_step_t_n = 0;
         d_settle_plus =
             settle_slots(world::wrap(d_theta + d_crab + d_delta - d_last_cmd));
         d_settle_minus = settle_slots(2.0 * d_delta);
@@ -380,13 +378,12 @@ private:
     int d_side = 0; // that side (the sign of the measured error)
     int d_n_plus = 0, d_n_minus = 0;
     std::uint64_t d_updates = 0;
-    // paper_ground_track: the crab flown around theta (ground_track), and the times of
-    // the step's averaged measurements (the bearing's time for its filter)
+    // paper_ground_track: the crab flown around theta (ground_track), and the sum of the
+    // times of the step's averaged measurements (the bearing's time for its filter)
     const bool d_ground_track;
     ground_track_guidance d_track;
     double d_crab = 0.0;
-    double d_step_t_sum = 0.0;
-    int d_step_t_n = 0;
+    double d_step_t_sum = 0.0; // over the step's d_n_plus + d_n_minus measurements
 };
 
 

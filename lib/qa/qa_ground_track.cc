@@ -80,6 +80,34 @@ double mean_offset(const run_result& r)
     return n > 0 ? sum / n : 0.0;
 }
 
+// The crab flown (heading commanded - theta, over whole probe steps) and the wind
+// triangle's at each slot's line of sight, averaged over Stage 2 from 1300 m to 300 m
+// (the emitter at the origin; a constant wind of sc's speed toward sc's direction).
+struct crab_flown {
+    double crab = 0.0, expected = 0.0;
+    int n = 0;
+};
+
+crab_flown crab_against_triangle(const run_result& r, const scenario& sc)
+{
+    crab_flown c;
+    for (const slot_record& s : r.records) {
+        const double range = std::hypot(s.x_m, s.y_m);
+        if (s.stage != 2 || range > 1300.0 || range < 300.0)
+            continue;
+        const double beta = std::atan2(-s.y_m, -s.x_m);
+        const double w_perp = sc.wind_speed_mps * std::sin(*sc.wind_to_rad - beta);
+        c.crab += wrap(s.cmd_heading_rad - s.theta_est_rad);
+        c.expected += std::asin(-w_perp / V);
+        ++c.n;
+    }
+    if (c.n > 0) {
+        c.crab /= c.n;
+        c.expected /= c.n;
+    }
+    return c;
+}
+
 } // namespace
 
 TEST(ground_track, crosswind_from_either_side_gives_the_wind_triangle)
@@ -162,23 +190,9 @@ TEST(ground_track, paper_option_flies_the_wind_triangle)
             ASSERT_TRUE(a.summary.success && b.summary.success);
             EXPECT_LT(b.summary.straight_ratio, a.summary.straight_ratio - 0.05)
                 << strategy << ", side " << side;
-            // The crab flown (heading commanded - theta, over whole probe steps) against
-            // the wind triangle at each slot's line of sight, from 1300 m to 300 m.
-            double crab = 0.0, expected = 0.0;
-            int n = 0;
-            for (const slot_record& r : b.records) {
-                const double range = std::hypot(r.x_m, r.y_m);
-                if (r.stage != 2 || range > 1300.0 || range < 300.0)
-                    continue;
-                const double beta = std::atan2(-r.y_m, -r.x_m);
-                const double w_perp =
-                    sc.wind_speed_mps * std::sin(*sc.wind_to_rad - beta);
-                crab += wrap(r.cmd_heading_rad - r.theta_est_rad);
-                expected += std::asin(-w_perp / V);
-                ++n;
-            }
-            ASSERT_GT(n, 100);
-            EXPECT_NEAR(crab / n, expected / n, 4.0 * DEG)
+            const crab_flown c = crab_against_triangle(b, sc);
+            ASSERT_GT(c.n, 100);
+            EXPECT_NEAR(c.crab, c.expected, 4.0 * DEG)
                 << strategy << ", side " << side; // from below
             // Off: the paper's Stage 2 flies theta + delta_k and theta - delta_k alike.
             EXPECT_LT(std::abs(mean_offset(a)), 0.5 * DEG)
@@ -220,21 +234,9 @@ TEST(ground_track, paper_option_in_gusts)
             ASSERT_TRUE(a.summary.success && b.summary.success);
             EXPECT_LT(b.summary.straight_ratio, a.summary.straight_ratio - 0.05)
                 << strategy << ", side " << side;
-            double crab = 0.0, expected = 0.0;
-            int n = 0;
-            for (const slot_record& r : b.records) {
-                const double range = std::hypot(r.x_m, r.y_m);
-                if (r.stage != 2 || range > 1300.0 || range < 300.0)
-                    continue;
-                const double beta = std::atan2(-r.y_m, -r.x_m);
-                crab += wrap(r.cmd_heading_rad - r.theta_est_rad);
-                expected +=
-                    std::asin(-sc.wind_speed_mps * std::sin(*sc.wind_to_rad - beta) / V);
-                ++n;
-            }
-            ASSERT_GT(n, 100);
-            EXPECT_NEAR(crab / n, expected / n, 10.0 * DEG)
-                << strategy << ", side " << side;
+            const crab_flown c = crab_against_triangle(b, sc);
+            ASSERT_GT(c.n, 100);
+            EXPECT_NEAR(c.crab, c.expected, 10.0 * DEG) << strategy << ", side " << side;
         }
 }
 

@@ -18,6 +18,7 @@
 
 #include "kernels.h"
 #include "samp_rate.h"
+#include <gnuradio/fft/fft.h>
 #include <fftw3.h>
 #include <gr-rfseek/tone_estimator.h>
 #include <volk/volk.h>
@@ -28,12 +29,12 @@
 #include <mutex>
 #include <stdexcept>
 
-// How the FFT is planned (CMake RFSEEK_FFT_PLANNER): FFTW_MEASURE times the candidate
-// algorithms and keeps the fastest (the same one on a given machine, as a rule);
-// FFTW_ESTIMATE chooses without timing, so every process on every machine with the same
-// FFTW computes the same floats.
+// How the FFT is planned (CMake RFSEEK_FFT_PLANNER): FFTW_ESTIMATE (the default) chooses
+// without timing, so every process on every machine with the same FFTW computes the same
+// floats and a seeded run flies the same slots; FFTW_MEASURE times the candidate
+// algorithms and keeps the fastest, which under load may differ from process to process.
 #ifndef RFSEEK_FFTW_PLANNER
-#define RFSEEK_FFTW_PLANNER FFTW_MEASURE
+#define RFSEEK_FFTW_PLANNER FFTW_ESTIMATE
 #endif
 
 namespace gr {
@@ -45,12 +46,6 @@ constexpr double TWO_PI = 2.0 * M_PI;
 constexpr int MOMENTS = 8;         // Taylor terms of the periodogram around w0
 constexpr double MAX_SHIFT = 0.15; // |D| (rad per unit u) before re-centring
 constexpr int BLOCK = 64;          // phasor table length
-
-std::mutex& fftw_planner_mutex()
-{
-    static std::mutex m;
-    return m;
-}
 
 template <typename T>
 struct volk_deleter {
@@ -123,7 +118,7 @@ struct tone_estimator::impl {
         c = 0.5 * (n - 1);
         h = std::max(1.0, c);
         {
-            std::lock_guard<std::mutex> lock(fftw_planner_mutex());
+            std::lock_guard<std::mutex> lock(gr::fft::planner::mutex());
             in = fftwf_alloc_complex(nfft);
             out = fftwf_alloc_complex(nfft);
             if (!in || !out)
@@ -148,7 +143,7 @@ struct tone_estimator::impl {
 
     ~impl()
     {
-        std::lock_guard<std::mutex> lock(fftw_planner_mutex());
+        std::lock_guard<std::mutex> lock(gr::fft::planner::mutex());
         if (plan)
             fftwf_destroy_plan(plan);
         fftwf_free(in);

@@ -76,7 +76,11 @@ class qa_sigmf(gr_unittest.TestCase):
             self.assertEqual(m["slot"], a["rfseek:slot"])
             self.assertEqual(m["offset"], a["core:sample_start"])
             self.assertEqual(m["valid"], a["rfseek:valid"])
-            self.assertAlmostEqual(m["freq_hz"], a["rfseek:freq_hz"], places=9)
+            # The recording's FFT may have been planned otherwise (FFTW's algorithm choice):
+            # the same float32 spectrum to rounding moves the interpolated peak of these
+            # windows at 0-5 dB by up to 2e-5 Hz (1e-6 of a 24.4 Hz bin), far below the
+            # estimator's own scatter.
+            self.assertAlmostEqual(m["freq_hz"], a["rfseek:freq_hz"], delta=1e-4)
             # The SNR sums float products: a change of summation order in the vector
             # kernels moves it in the 7th digit, nothing more.
             self.assertAlmostEqual(m["snr_db"], a["rfseek:snr_db"], delta=1e-4)

@@ -9,6 +9,7 @@ the program's rows; a Dask LocalCluster of 2 worker processes gives the rows of
 without re-running its finished rows; an unreachable scheduler is one line and exit 2."""
 
 import csv
+import io
 import json
 import os
 import signal
@@ -23,6 +24,15 @@ BUILD = os.environ.get("RFSEEK_BUILD_DIR", os.path.join(os.path.dirname(__file__
 MC = os.path.join(BUILD, "apps", "rfseek-montecarlo")
 # A 2 km flight keeps the test quick; the code is the same as the reference's.
 SHORT = ["--set", "initial_distance_m=2000", "--quiet"]
+
+
+def read_text(path):
+    with open(path) as f:
+        return f.read()
+
+
+def load_json(path):
+    return json.loads(read_text(path))
 
 
 def run_mc(tmp, name, *args, timeout=300):
@@ -49,7 +59,7 @@ class qa_study_backends(gr_unittest.TestCase):
         p, out = run_mc(self.tmp, "one", "--runs", "3", "--seed", "7", "--strategy",
                         "adaptive", "--preset", "drift2", "--threads", "1", *SHORT)
         self.assertEqual(p.returncode, 0, p.stderr)
-        rows = json.load(open(out))["rows"]
+        rows = load_json((out))["rows"]
         pt = rfseek.study_point("drift2", [("initial_distance_m", "2000")])
         self.assertEqual(pt.scenario.initial_distance_m, 2000)
         self.assertEqual(pt.scenario.cfo_drift_hz_per_s, 2.0)  # the preset, then --set
@@ -72,13 +82,13 @@ class qa_study_backends(gr_unittest.TestCase):
         pd, od = run_mc(self.tmp, "dask", "--dask-local", "2", "--dask-chunk", "3", *args)
         self.assertEqual(pt.returncode, 0, pt.stderr)
         self.assertEqual(pd.returncode, 0, pd.stderr)
-        rt, rd = json.load(open(ot)), json.load(open(od))
+        rt, rd = load_json((ot)), load_json((od))
         self.assertEqual(len(rd["rows"]), 40)
         self.assertEqual(rt["rows"], rd["rows"])
         self.assertEqual(rt["summary"], rd["summary"])
         self.assertEqual(rd["timing"]["backend"], "dask-local")
         self.assertEqual(rd["timing"]["threads"], 2)
-        self.assertEqual(open(ot[:-5] + ".csv").read(), open(od[:-5] + ".csv").read())
+        self.assertEqual(read_text(ot[:-5] + ".csv"), read_text(od[:-5] + ".csv"))
 
     def test_killed_study_resumes_to_the_same_summary(self):
         args = ["--runs", "12", "--seed", "1", "--strategy", "paper,adaptive",
@@ -91,7 +101,7 @@ class qa_study_backends(gr_unittest.TestCase):
         rows_before = 0
         while time.time() < deadline and proc.poll() is None:
             if os.path.exists(csv_path):
-                rows_before = sum(1 for _ in open(csv_path)) - 1
+                rows_before = read_text(csv_path).count("\n") - 1
                 if rows_before >= 10:
                     break
             time.sleep(0.02)
@@ -99,7 +109,7 @@ class qa_study_backends(gr_unittest.TestCase):
         proc.send_signal(signal.SIGKILL)
         proc.wait()
         self.assertFalse(os.path.exists(out))  # killed: no JSON yet
-        kept = list(csv.DictReader(open(csv_path)))
+        kept = list(csv.DictReader(io.StringIO(read_text(csv_path))))
         kept = [r for r in kept if r["error"] is not None]  # complete lines only
         self.assertGreaterEqual(len(kept), 10)
         self.assertLess(len(kept), 48)
@@ -109,7 +119,7 @@ class qa_study_backends(gr_unittest.TestCase):
         p, _ = run_mc(self.tmp, "cut", "--resume", *args)
         self.assertEqual(p.returncode, 0, p.stderr)
         self.assertIn("resuming: %d of 48 rows" % len(kept), p.stderr)
-        resumed = json.load(open(out))
+        resumed = load_json((out))
         self.assertEqual(resumed["timing"]["runs_resumed"], len(kept))
         # Only the missing runs ran: the slots flown now are those of the missing rows.
         done = {(r["strategy"], r["preset"], int(r["seed"])) for r in kept}
@@ -119,17 +129,17 @@ class qa_study_backends(gr_unittest.TestCase):
 
         p, whole = run_mc(self.tmp, "whole", *args)
         self.assertEqual(p.returncode, 0, p.stderr)
-        whole = json.load(open(whole))
+        whole = load_json((whole))
         self.assertEqual(resumed["rows"], whole["rows"])
         self.assertEqual(resumed["points"], whole["points"])
         self.assertEqual(resumed["summary"], whole["summary"])
-        self.assertEqual(open(csv_path).read(),
-                         open(os.path.join(self.tmp, "whole.csv")).read())
+        self.assertEqual(read_text(csv_path),
+                         read_text(os.path.join(self.tmp, "whole.csv")))
 
         # A finished study resumed runs nothing; other settings are refused.
         p, _ = run_mc(self.tmp, "cut", "--resume", *args)
         self.assertEqual(p.returncode, 0, p.stderr)
-        self.assertEqual(json.load(open(out))["timing"]["slots"], 0)
+        self.assertEqual(load_json((out))["timing"]["slots"], 0)
         p, _ = run_mc(self.tmp, "cut", "--resume", *args, "--set", "snr_db=-5")
         self.assertEqual(p.returncode, 2)
         self.assertIn("other settings", p.stderr)

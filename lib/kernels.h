@@ -27,8 +27,12 @@ struct peak {
     double total; //!< sum of |X_k|^2
 };
 
-//! First index of the maximum of |x[k]|^2 over k < n (n >= 1), and the total power.
-peak peak_search(const std::complex<float>* x, std::uint32_t n);
+/*!
+ * First index of the maximum of |x[k]|^2 over k < n (n >= 1), and the total power.
+ * width: 16 (16-lane vectors, where the CPU has AVX-512; else as 8), 8 (8-lane vectors)
+ * or 0 (16 where AVX-512 is available); the same result and floats at any width.
+ */
+peak peak_search(const std::complex<float>* x, std::uint32_t n, int width = 0);
 
 /*!
  * sum_k x[k] A_{k / 64} B_{k % 64}: a demodulating dot product whose phasor is the

@@ -16,10 +16,50 @@ namespace gr {
 namespace rfseek {
 namespace detail {
 
+namespace {
+
+// The element of its block of 8 that lane l (mod 8) of the running maxima holds.
+const std::uint32_t LANE_ELEMENT[8] = { 0, 4, 1, 5, 2, 6, 3, 7 };
+
+// The reduction shared by both widths: per parity (even, odd blocks) and lane, the
+// running maximum, its block and the float sum; then the tail. Returns the peak.
+peak reduce_lanes(const float (&best)[2][8],
+                  const float (&sum)[2][8],
+                  const int (&best_block)[2][8],
+                  const std::complex<float>* x,
+                  std::uint32_t blocks,
+                  std::uint32_t n)
+{
+    peak r{ 0, -1.0f, 0.0 };
+    for (int s = 0; s < 2; ++s) {
+        for (int lane = 0; lane < 8; ++lane) {
+            r.total += sum[s][lane];
+            if (best[s][lane] < 0.0f)
+                continue; // no block of this parity
+            const std::uint32_t idx =
+                static_cast<std::uint32_t>(best_block[s][lane]) * 8 + LANE_ELEMENT[lane];
+            if (best[s][lane] > r.value || (best[s][lane] == r.value && idx < r.index)) {
+                r.value = best[s][lane];
+                r.index = idx;
+            }
+        }
+    }
+    for (std::uint32_t k = blocks * 8; k < n; ++k) {
+        const float p = std::norm(x[k]);
+        r.total += p;
+        if (p > r.value) {
+            r.value = p;
+            r.index = k;
+        }
+    }
+    return r;
+}
+
 #if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
-__attribute__((target_clones("avx512f", "avx2", "default")))
-#endif
-peak peak_search(const std::complex<float>* x, std::uint32_t n)
+#define RFSEEK_WIDE_PEAK_SEARCH 1
+// AVX-512: both parities in one 16-lane vector, a pair of blocks per step.
+__attribute__((target("avx512f"))) peak peak_search_wide(const std::complex<float>* x,
+                                                         std::uint32_t n)
 {
     const float* f = reinterpret_cast<const float*>(x);
     const std::uint32_t blocks = n / 8;
@@ -34,7 +74,6 @@ peak peak_search(const std::complex<float>* x, std::uint32_t n)
     const v16i swap_pairs = { 1, 0, 3, 2, 5, 4, 7, 6, 9, 8, 11, 10, 13, 12, 15, 14 };
     const v16i take_odd_from_hi = { 0,  9,  2,  11, 4,  13, 6,  15,
                                     16, 25, 18, 27, 20, 29, 22, 31 };
-    static const std::uint32_t LANE_ELEMENT[8] = { 0, 4, 1, 5, 2, 6, 3, 7 };
     auto step = [&](std::uint32_t blk, v16f a, v16f b) {
         a *= a;
         b *= b;
@@ -74,29 +113,75 @@ peak peak_search(const std::complex<float>* x, std::uint32_t n)
     std::memcpy(best, &best16, sizeof(best));
     std::memcpy(sum, &sum16, sizeof(sum));
     std::memcpy(best_block, &block16, sizeof(best_block));
-    peak r{ 0, -1.0f, 0.0 };
-    for (int s = 0; s < 2; ++s) {
-        for (int lane = 0; lane < 8; ++lane) {
-            r.total += sum[s][lane];
-            if (best[s][lane] < 0.0f)
-                continue; // no block of this parity
-            const std::uint32_t idx =
-                static_cast<std::uint32_t>(best_block[s][lane]) * 8 + LANE_ELEMENT[lane];
-            if (best[s][lane] > r.value || (best[s][lane] == r.value && idx < r.index)) {
-                r.value = best[s][lane];
-                r.index = idx;
-            }
-        }
+    return reduce_lanes(best, sum, best_block, x, blocks, n);
+}
+#endif
+
+// AVX2 and the baseline: the same lanes, the same float operations in the same order,
+// as two 8-lane vectors per quantity (the 16-lane form splits into halves that GCC
+// shuffled through memory, ten times slower without AVX-512).
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+__attribute__((target_clones("avx2", "default")))
+#endif
+peak peak_search_narrow(const std::complex<float>* x, std::uint32_t n)
+{
+    const float* f = reinterpret_cast<const float*>(x);
+    const std::uint32_t blocks = n / 8;
+    v8f best_e = { -1, -1, -1, -1, -1, -1, -1, -1 }, best_o = best_e;
+    v8i block_e = { 0, 0, 0, 0, 0, 0, 0, 0 }, block_o = block_e;
+    v8f sum_e = { 0, 0, 0, 0, 0, 0, 0, 0 }, sum_o = sum_e;
+    const v8i swap_pairs = { 1, 0, 3, 2, 5, 4, 7, 6 };
+    const v8i take_odd_from_hi = { 0, 9, 2, 11, 4, 13, 6, 15 };
+    // Named accumulators per parity (an indexed array of vectors would live in memory).
+    auto step = [&](std::uint32_t blk, v8f& best, v8f& sum, v8i& block) {
+        v8f lo, hi;
+        std::memcpy(&lo, f + 16 * blk, sizeof(lo));
+        std::memcpy(&hi, f + 16 * blk + 8, sizeof(hi));
+        lo *= lo;
+        hi *= hi;
+        lo += __builtin_shuffle(lo, swap_pairs);
+        hi += __builtin_shuffle(hi, swap_pairs);
+        const v8f p = __builtin_shuffle(lo, hi, take_odd_from_hi);
+        sum += p;
+        const v8i gt = p > best;
+        best = gt ? p : best;
+        const int e = static_cast<int>(blk);
+        const v8i bb = { e, e, e, e, e, e, e, e };
+        block = gt ? bb : block;
+    };
+    std::uint32_t b = 0;
+    for (; b + 2 <= blocks; b += 2) {
+        step(b, best_e, sum_e, block_e);
+        step(b + 1, best_o, sum_o, block_o);
     }
-    for (std::uint32_t k = blocks * 8; k < n; ++k) {
-        const float p = std::norm(x[k]);
-        r.total += p;
-        if (p > r.value) {
-            r.value = p;
-            r.index = k;
-        }
-    }
-    return r;
+    if (b < blocks)
+        step(b, best_e, sum_e, block_e);
+    float best_out[2][8], sum_out[2][8];
+    int block_out[2][8];
+    std::memcpy(best_out[0], &best_e, sizeof(best_out[0]));
+    std::memcpy(best_out[1], &best_o, sizeof(best_out[1]));
+    std::memcpy(sum_out[0], &sum_e, sizeof(sum_out[0]));
+    std::memcpy(sum_out[1], &sum_o, sizeof(sum_out[1]));
+    std::memcpy(block_out[0], &block_e, sizeof(block_out[0]));
+    std::memcpy(block_out[1], &block_o, sizeof(block_out[1]));
+    return reduce_lanes(best_out, sum_out, block_out, x, blocks, n);
+}
+
+} // namespace
+
+peak peak_search(const std::complex<float>* x, std::uint32_t n, int width)
+{
+#ifdef RFSEEK_WIDE_PEAK_SEARCH
+    static const bool have_avx512f = [] {
+        __builtin_cpu_init();
+        return __builtin_cpu_supports("avx512f") != 0;
+    }();
+    if (width != 8 && have_avx512f)
+        return peak_search_wide(x, n);
+#else
+    (void)width;
+#endif
+    return peak_search_narrow(x, n);
 }
 
 #if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)

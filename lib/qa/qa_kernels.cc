@@ -34,7 +34,14 @@ TEST(peak_search, matches_a_plain_loop)
                 if (std::norm(x[k]) > std::norm(x[best]))
                     best = k;
             }
+            // Every width (16 runs as 8 on a CPU without AVX-512): the same result.
             const auto p = detail::peak_search(x.data(), n);
+            for (int width : { 8, 16 }) {
+                const auto q = detail::peak_search(x.data(), n, width);
+                ASSERT_EQ(q.index, p.index) << "n " << n << " width " << width;
+                ASSERT_EQ(q.value, p.value) << "n " << n << " width " << width;
+                ASSERT_EQ(q.total, p.total) << "n " << n << " width " << width;
+            }
             ASSERT_EQ(p.index, best) << "n " << n << " trial " << trial;
             EXPECT_EQ(p.value, std::norm(x[best]));
             EXPECT_NEAR(p.total, total, 1e-5 * total);

@@ -362,9 +362,11 @@ __attribute__((always_inline)) inline void write_samples8(const float* tr,
 }
 
 // 512-bit vectors pay only with AVX-512 (32 registers); elsewhere 16 ymm accumulators
-// would spill.
-// (The clones' resolvers pick the AVX-512 one by the same test; either width gives the
-// same floats.)
+// would spill. (The clones' resolvers pick the AVX-512 one by the same test; either
+// width gives the same floats.)
+const bool HAVE_AVX512F = have_avx512f();
+} // namespace
+
 bool have_avx512f()
 {
 #if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
@@ -374,8 +376,6 @@ bool have_avx512f()
     return false;
 #endif
 }
-const bool HAVE_AVX512F = have_avx512f();
-} // namespace
 
 #if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
 __attribute__((target_clones("avx512f", "avx2", "default")))

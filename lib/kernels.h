@@ -27,6 +27,9 @@ struct peak {
     double total; //!< sum of |X_k|^2
 };
 
+//! The CPU has AVX-512 (the kernels' 16-lane paths pay only there).
+bool have_avx512f();
+
 /*!
  * First index of the maximum of |x[k]|^2 over k < n (n >= 1), and the total power.
  * width: 16 (16-lane vectors, where the CPU has AVX-512; else as 8), 8 (8-lane vectors)

@@ -172,11 +172,8 @@ peak peak_search_narrow(const std::complex<float>* x, std::uint32_t n)
 peak peak_search(const std::complex<float>* x, std::uint32_t n, int width)
 {
 #ifdef RFSEEK_WIDE_PEAK_SEARCH
-    static const bool have_avx512f = [] {
-        __builtin_cpu_init();
-        return __builtin_cpu_supports("avx512f") != 0;
-    }();
-    if (width != 8 && have_avx512f)
+    static const bool wide = have_avx512f();
+    if (width != 8 && wide)
         return peak_search_wide(x, n);
 #else
     (void)width;

@@ -79,7 +79,7 @@ public:
     explicit adaptive_seeker(const seeker_config& cfg)
         : d_cfg(cfg),
           d_filter(make_outlier_filter(cfg)),
-          d_track(make_ground_track(cfg)),
+          d_track(make_ground_track(cfg, cfg.ground_track_gain)),
           d_amp(cfg.max_doppler_hz()),
           d_lim(turn_limits_of(cfg)),
           d_plan_turns(d_lim.limited()),

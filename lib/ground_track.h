@@ -34,7 +34,7 @@ namespace gr {
 namespace rfseek {
 
 struct ground_track_config {
-    double gain = 2.0;             //!< K: crab change per bearing change (N - 1)
+    double gain = 1.0;             //!< K: crab change per bearing change (N - 1)
     double max_crab_rad = 0.87;    //!< |c| limit (50 deg: winds up to 0.77 v across)
     double gate = 1.0;             //!< rate / std beyond which the crab moves
     double rate_walk = 5.0e-5;     //!< bearing-rate random walk (rad/s per sqrt(s))

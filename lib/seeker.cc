@@ -67,6 +67,8 @@ void validate_adaptive(const seeker_config& c)
         bad("adaptive_reacquire_rad", c.adaptive_reacquire_rad, "in (0, pi/2]");
     if (!(c.ground_track_gain >= 0.0 && c.ground_track_gain <= 100.0))
         bad("ground_track_gain", c.ground_track_gain, "in [0, 100]");
+    if (!(c.paper_ground_track_gain >= 0.0 && c.paper_ground_track_gain <= 100.0))
+        bad("paper_ground_track_gain", c.paper_ground_track_gain, "in [0, 100]");
     if (!(c.ground_track_max_crab_rad >= 0.0 && c.ground_track_max_crab_rad < M_PI / 2))
         bad("ground_track_max_crab_rad", c.ground_track_max_crab_rad, "in [0, pi/2)");
     if (!(c.ground_track_gate >= 0.0 && c.ground_track_gate <= 100.0))
@@ -255,6 +257,7 @@ std::vector<std::string> seeker_config::keys()
              "ground_track_gate",
              "ground_track_rate_walk",
              "paper_ground_track",
+             "paper_ground_track_gain",
              "self_arrival",
              "arrival_swing",
              "arrival_window_s",
@@ -347,6 +350,7 @@ const std::map<std::string, seeker_setting>& settings()
         RFSEEK_SETTING(ground_track_gate, ground_track_gate, real),
         RFSEEK_SETTING(ground_track_rate_walk, ground_track_rate_walk, real),
         RFSEEK_SETTING(paper_ground_track, paper_ground_track, boolean),
+        RFSEEK_SETTING(paper_ground_track_gain, paper_ground_track_gain, real),
         RFSEEK_SETTING(self_arrival, self_arrival, boolean),
         RFSEEK_SETTING(arrival_swing, arrival_swing, real),
         RFSEEK_SETTING(arrival_window_s, arrival_window_s, real),

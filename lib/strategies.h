@@ -40,11 +40,12 @@ inline outlier_filter make_outlier_filter(const seeker_config& cfg)
                           cfg.min_snr_db);
 }
 
-//! The ground-track guidance as a strategy's configuration asks for it.
-inline ground_track_guidance make_ground_track(const seeker_config& cfg)
+//! The ground-track guidance as a strategy's configuration asks for it, with the
+//! strategy's own gain K (ground_track_gain or paper_ground_track_gain).
+inline ground_track_guidance make_ground_track(const seeker_config& cfg, double gain)
 {
     ground_track_config g;
-    g.gain = cfg.ground_track_gain;
+    g.gain = gain;
     g.max_crab_rad = cfg.ground_track_max_crab_rad;
     g.gate = cfg.ground_track_gate;
     g.rate_walk = cfg.ground_track_rate_walk;

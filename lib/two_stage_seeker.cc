@@ -64,7 +64,7 @@ public:
           d_circle(cfg.strategy == "paper"),
           d_grow_delta(d_circle && cfg.delta_max_rad > cfg.delta_rad),
           d_ground_track(cfg.paper_ground_track),
-          d_track(make_ground_track(cfg))
+          d_track(make_ground_track(cfg, cfg.paper_ground_track_gain))
     {
         rng g(cfg.seed, 11);
         d_sense = g.uniform() < 0.5 ? 1.0 : -1.0;

@@ -100,7 +100,7 @@ struct RFSEEK_API seeker_config {
     // ground_track_gain x bearing change) until the bearing stops turning: a straight
     // ground track in any wind below the airspeed, without knowing the wind or the range.
     bool adaptive_ground_track = true; //!< `adaptive` crabs into the wind
-    double ground_track_gain = 2.0;    //!< K (navigation constant N = K + 1)
+    double ground_track_gain = 1.0;    //!< `adaptive`'s K (navigation constant N = K + 1)
     double ground_track_max_crab_rad = 0.8726646259971648; //!< |crab| limit (50 deg)
     //! The crab moves while the estimated bearing rate exceeds this many std.
     double ground_track_gate = 1.0;
@@ -110,6 +110,8 @@ struct RFSEEK_API seeker_config {
     //! crab (eq. 5 then measures the bearing around the heading flown); false: the
     //! paper's Stage 2, an air heading at theta.
     bool paper_ground_track = false;
+    //! K of the paper's Stage 2 over the ground (paper_ground_track).
+    double paper_ground_track_gain = 2.0;
     // Arrival without truth (docs/seeker.md "Arrival and location"), any strategy.
     //! Detect the overflight, loiter on an orbit and locate the emitter; false: fly the
     //! strategy only (the paper's runs end at the simulator's d_v).

@@ -614,9 +614,11 @@ TEST(homing_seeker, without_a_fix_seeks_again_or_gives_up)
 {
     // A fix can never be good enough (95 % ellipse under 1 mm): with locate_retry the
     // vehicle goes back to seeking after locate_max_orbits and declares again; without
-    // it, the run ends there, declared and not located.
+    // it, the run ends there, declared and not located. (How often the vehicle
+    // declares again within the cap varies from seed to seed: 0-5 times over seeds
+    // 1-12; seed 5 declares three times.)
     scenario sc;
-    sc.seed = 2;
+    sc.seed = 5;
     sc.self_arrival = true;
     sc.flight_cap_m = 12000.0; // room for a second approach after the first loiter
     seeker_config cfg = simulation::seeker_for(sc, "adaptive");

@@ -4,7 +4,7 @@
  */
 
 /* BINDTOOL_HEADER_FILE(seeker.h) */
-/* BINDTOOL_HEADER_FILE_HASH(0e677aba1fdc8d845a1ca61283d64e1c) */
+/* BINDTOOL_HEADER_FILE_HASH(56d0f155bdfbdd3899a2f34814c88e29) */
 
 #include "kwargs.h"
 #include <gr-rfseek/seeker.h>
@@ -131,7 +131,8 @@ void bind_seeker_config(py::module& m)
        "adaptive: crab into the wind until the bearing stops turning (a straight ground "
        "track)");
     RW(ground_track_gain,
-       "ground track: crab change per bearing change (proportional navigation N - 1)");
+       "adaptive's ground track: crab change per bearing change (proportional "
+       "navigation N - 1)");
     RW(ground_track_max_crab_rad, "ground track: |crab| limit (rad)");
     RW(ground_track_gate,
        "ground track: the crab moves while the bearing rate exceeds this many std");
@@ -140,6 +141,9 @@ void bind_seeker_config(py::module& m)
     RW(paper_ground_track,
        "paper, paper_no_circle: fly Stage 2's probes around theta plus the ground-track "
        "crab (off: the paper's air heading at theta)");
+    RW(paper_ground_track_gain,
+       "paper_ground_track: crab change per bearing change (proportional navigation "
+       "N - 1)");
     bind_arrival_fields(c);
 #undef RW
     c.def("validate",

@@ -18,6 +18,7 @@
 #include <cmath>
 #include <random>
 #include <stdexcept>
+#include <string>
 
 using namespace gr::rfseek;
 
@@ -175,6 +176,32 @@ TEST(ground_track, limits_and_bad_input)
 // crosswind (no gusts) the crab it flies over the last kilometre is the wind triangle's,
 // and its flight is shorter than without; in calm air the crab stays near 0. Off, no
 // crab.
+TEST(ground_track, gains_are_validated_by_name)
+{
+    // adaptive's gain and the paper option's are separate fields, each checked in
+    // [0, 100] with its name in the error; --set reaches both.
+    for (const char* field : { "ground_track_gain", "paper_ground_track_gain" })
+        for (double bad : { -1.0, 101.0, static_cast<double>(NAN) }) {
+            seeker_config c;
+            (std::string(field) == "ground_track_gain" ? c.ground_track_gain
+                                                       : c.paper_ground_track_gain) = bad;
+            try {
+                c.validate();
+                ADD_FAILURE() << field << " = " << bad << " accepted";
+            } catch (const std::invalid_argument& e) {
+                EXPECT_NE(std::string(e.what()).find(field), std::string::npos)
+                    << e.what();
+            }
+        }
+    seeker_config c;
+    EXPECT_EQ(c.ground_track_gain, 1.0);
+    EXPECT_EQ(c.paper_ground_track_gain, 2.0);
+    c.set("paper_ground_track_gain", "3");
+    c.set("ground_track_gain", "0.5");
+    EXPECT_EQ(c.paper_ground_track_gain, 3.0);
+    EXPECT_EQ(c.ground_track_gain, 0.5);
+}
+
 TEST(ground_track, paper_option_flies_the_wind_triangle)
 {
     for (const char* strategy : { "paper", "paper_no_circle" })

@@ -102,6 +102,12 @@ world::world(const scenario& sc) : d_sc(sc)
         const double g = disc > 0.0 ? w_par + std::sqrt(disc) : 0.0;
         d_straight_air = g > 0.0 ? path * v / g : std::numeric_limits<double>::infinity();
     }
+    // The default cap: 4 x the straight line's air distance, never less than in calm air
+    // (a tailwind shortens the way there, not the work near the emitter).
+    d_cap =
+        d_sc.flight_cap_m
+            ? *d_sc.flight_cap_m
+            : 4.0 * std::max(path, std::isfinite(d_straight_air) ? d_straight_air : path);
 
     update_amplitude();
     draw_measured_heading();
@@ -390,7 +396,7 @@ void world::advance(double commanded_heading_rad)
 
     ++d_slot;
     update_arrival();
-    d_capped = !finished() && d_flown >= d_sc.effective_flight_cap_m() - 1e-9;
+    d_capped = !finished() && d_flown >= d_cap - 1e-9;
     draw_measured_heading();
 }
 

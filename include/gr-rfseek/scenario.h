@@ -81,7 +81,7 @@ struct RFSEEK_API scenario {
     double altimeter_error_m = 0.0;  //!< believed altitude - altitude_m
     // Run
     double success_radius_m = 200.0;    //!< d_v
-    std::optional<double> flight_cap_m; //!< default 4 (d - d_v)
+    std::optional<double> flight_cap_m; //!< default: world::flight_cap_m()
     /*!
      * The run ends when the vehicle itself declares it is done (seeker_config::
      * self_arrival: located, or given up), not at d_v; d_v stays a study metric
@@ -99,6 +99,8 @@ struct RFSEEK_API scenario {
     int slot_samples() const; //!< round(T_slot * fs)
     double window_duration_s() const { return window_len / samp_rate_hz; }
     double shortest_path_m() const { return initial_distance_m - success_radius_m; }
+    //! flight_cap_m, or 4 (d - d_v): the cap in calm air (world::flight_cap_m() is the
+    //! one flown: into a headwind the default is 4 x the straight line's air distance).
     double effective_flight_cap_m() const;
 
     //! Names of the numeric fields settable by set() (CLI "--set key=value", GRC).

@@ -75,6 +75,13 @@ public:
      * start (d - d_v in calm air; infinity when that wind blows it back).
      */
     double straight_air_m() const { return d_straight_air; }
+    /*!
+     * The distance flown through the air at which the run is capped (a failure):
+     * flight_cap_m if set, else 4 x straight_air_m() where that is longer than d - d_v
+     * (into a headwind the straight line itself costs more air distance), else
+     * 4 (d - d_v) (calm air, a tailwind, or a wind that blows the vehicle back).
+     */
+    double flight_cap_m() const { return d_cap; }
     //! The mean wind now (without gusts), m/s.
     double wind_east_mps() const { return d_wind_x; }
     double wind_north_mps() const { return d_wind_y; }
@@ -168,6 +175,7 @@ private:
     double d_amp = 0.0, d_noise_power = 0.0;
     double d_wind_x = 0.0, d_wind_y = 0.0; // mean wind
     double d_straight_air = 0.0;
+    double d_cap = 0.0;
     double d_gust_x = 0.0, d_gust_y = 0.0; // gusts (Gauss-Markov), this slot
     double d_compass_err = 0.0;            // flown - commanded, this slot
     bool d_arrived = false, d_capped = false, d_reached = false, d_ended = false;

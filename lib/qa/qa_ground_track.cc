@@ -288,6 +288,37 @@ TEST(world, straight_line_cost_is_the_wind_triangle)
     EXPECT_EQ(world(calm).straight_air_m(), calm.shortest_path_m());
 }
 
+TEST(world, flight_cap_is_four_straight_lines_through_the_air)
+{
+    // Without flight_cap_m the run is capped at 4 x the straight ground line's air
+    // distance, never below 4 (d - d_v): 2.5 times that into a 6 m/s headwind at 10 m/s,
+    // 4 (d - d_v) in calm air, in a tailwind and where the wind blows the vehicle back;
+    // a given flight_cap_m is kept.
+    scenario sc;
+    sc.start_angle_rad = 0.0;
+    const double path = sc.shortest_path_m();
+    EXPECT_EQ(world(sc).flight_cap_m(), 4.0 * path);
+    sc.wind_speed_mps = 6.0;
+    sc.wind_to_rad = 0.0; // headwind
+    EXPECT_NEAR(world(sc).flight_cap_m(), 4.0 * path * V / (V - 6.0), 1e-6);
+    sc.wind_to_rad = M_PI; // tailwind
+    EXPECT_EQ(world(sc).flight_cap_m(), 4.0 * path);
+    sc.wind_to_rad = 0.0;
+    sc.wind_speed_mps = 12.0;
+    EXPECT_EQ(world(sc).flight_cap_m(), 4.0 * path);
+    sc.flight_cap_m = 1234.0;
+    EXPECT_EQ(world(sc).flight_cap_m(), 1234.0);
+    // Flown straight back with the wind, the headwind world ends at its own cap.
+    sc.wind_speed_mps = 6.0;
+    sc.flight_cap_m.reset();
+    sc.start_heading_rad = 0.0;
+    world w(sc);
+    while (!w.finished())
+        w.advance(0.0);
+    EXPECT_TRUE(w.capped());
+    EXPECT_NEAR(w.distance_flown_m(), 4.0 * path * V / (V - 6.0), V * sc.slot_period_s);
+}
+
 TEST(world, wind_veers_at_the_stated_rate)
 {
     scenario sc;

@@ -4,7 +4,7 @@
  */
 
 /* BINDTOOL_HEADER_FILE(scenario.h) */
-/* BINDTOOL_HEADER_FILE_HASH(eee502dd278a84ea248199649a696910) */
+/* BINDTOOL_HEADER_FILE_HASH(5947be5c176a98960966fb78eb7c4564) */
 
 #include "kwargs.h"
 #include <gr-rfseek/scenario.h>
@@ -38,7 +38,9 @@ void bind_scenario_methods(py::class_<gr::rfseek::scenario>& c)
         .def_property_readonly(
             "effective_flight_cap_m",
             &scenario::effective_flight_cap_m,
-            "The flight cap in metres (flight_cap_m, default 4 (d - d_v)).")
+            "The flight cap in calm air, metres (flight_cap_m, default 4 (d - d_v)); "
+            "world.flight_cap_m is the one flown (into a headwind the default is 4 x "
+            "the straight line's air distance).")
         .def_static("keys",
                     &scenario::keys,
                     "Names of the numeric fields settable by set() (CLI \"--set "
@@ -146,7 +148,9 @@ void bind_scenario(py::module& m)
     RW(altimeter_error_m,
        "altitude the vehicle believes minus the true one (m; seeker_for adds it)");
     RW(success_radius_m, "d_v (m)");
-    RW(flight_cap_m, "flight cap (m); None = 4 (d - d_v)");
+    RW(flight_cap_m,
+       "flight cap, air metres; None = 4 x the straight ground line's air distance, "
+       "at least 4 (d - d_v)");
     RW(self_arrival,
        "the run ends on the vehicle's own declaration (seeker_config.self_arrival); d_v "
        "stays a metric");

@@ -4,7 +4,7 @@
  */
 
 /* BINDTOOL_HEADER_FILE(world.h) */
-/* BINDTOOL_HEADER_FILE_HASH(e845d861bf1eab58acfcad9e00f5197e) */
+/* BINDTOOL_HEADER_FILE_HASH(29608c5abe2f02e54e1bb6883b981963) */
 
 #include <gr-rfseek/world.h>
 #include <pybind11/complex.h>
@@ -148,6 +148,12 @@ void bind_world(py::module& m)
                                    "crabbed into the mean wind "
                                    "at the start (d - d_v in calm air; infinity when "
                                    "that wind blows it back).")
+            .def_property_readonly(
+                "flight_cap_m",
+                &world::flight_cap_m,
+                "Air distance at which the run is capped: flight_cap_m, or 4 x "
+                "straight_air_m where that is longer than d - d_v (a headwind), else "
+                "4 (d - d_v).")
             .def_property_readonly("wind_east_mps",
                                    &world::wind_east_mps,
                                    "The mean wind now (without gusts), m/s.")

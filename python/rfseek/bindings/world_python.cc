@@ -143,11 +143,10 @@ void bind_world(py::module& m)
             .def_property_readonly("straight_air_m",
                                    &world::straight_air_m,
                                    "What the straight ground line costs: the air "
-                                   "distance a vehicle pays flying "
-                                   "the straight ground track from the start to d_v, "
-                                   "crabbed into the mean wind "
-                                   "at the start (d - d_v in calm air; infinity when "
-                                   "that wind blows it back).")
+                                   "distance a vehicle pays flying the straight ground "
+                                   "track from the start to d_v, crabbed into the mean "
+                                   "wind at the start (d - d_v in calm air; infinity "
+                                   "when that wind blows it back).")
             .def_property_readonly(
                 "flight_cap_m",
                 &world::flight_cap_m,

@@ -102,12 +102,13 @@ world::world(const scenario& sc) : d_sc(sc)
         const double g = disc > 0.0 ? w_par + std::sqrt(disc) : 0.0;
         d_straight_air = g > 0.0 ? path * v / g : std::numeric_limits<double>::infinity();
     }
-    // The default cap: 4 x the straight line's air distance, never less than in calm air
-    // (a tailwind shortens the way there, not the work near the emitter).
-    d_cap =
-        d_sc.flight_cap_m
-            ? *d_sc.flight_cap_m
-            : 4.0 * std::max(path, std::isfinite(d_straight_air) ? d_straight_air : path);
+    // The default cap: 4 x the straight line's air distance, never less than the
+    // scenario's calm-air one (a tailwind shortens the way there, not the work near the
+    // emitter); a given flight_cap_m is kept.
+    const double calm_cap = d_sc.effective_flight_cap_m();
+    d_cap = d_sc.flight_cap_m || !std::isfinite(d_straight_air)
+                ? calm_cap
+                : std::max(calm_cap, 4.0 * d_straight_air);
 
     update_amplitude();
     draw_measured_heading();

@@ -59,18 +59,16 @@ def paired(variant, base, column="ratio"):
                          "strategy, preset and sweep value" % column)
     out = []
     for key in sorted(groups):
-        pairs = groups[key]
-        d = [a - b for a, b, _, _ in pairs]
+        va, vb, sa, sb = zip(*groups[key])
+        d = [a - b for a, b in zip(va, vb)]
         n = len(d)
         out.append({
             "strategy": key[0], "preset": key[1], "sweep_value": key[2], "n": n,
-            "mean_variant": statistics.fmean(a for a, _, _, _ in pairs),
-            "mean_base": statistics.fmean(b for _, b, _, _ in pairs),
+            "mean_variant": statistics.fmean(va), "mean_base": statistics.fmean(vb),
             "diff": statistics.fmean(d),
             "se": statistics.stdev(d) / math.sqrt(n) if n >= 2 else None,
             "changed": sum(1 for x in d if x != 0.0),
-            "success_variant": sum(s for _, _, s, _ in pairs) / n,
-            "success_base": sum(s for _, _, _, s in pairs) / n,
+            "success_variant": sum(sa) / n, "success_base": sum(sb) / n,
         })
     return out
 

@@ -23,6 +23,7 @@
  */
 
 #include "angle.h"
+#include "heading_filter.h"
 #include "strategies.h"
 #include <gr-rfseek/arrival.h>
 #include <gr-rfseek/scenario.h>
@@ -64,6 +65,7 @@ public:
                     std::isnan(cfg.locate_altitude_m) ? 0.0 : cfg.locate_altitude_m,
                     std::isnan(cfg.locate_altitude_m) ? 0.0
                                                       : cfg.locate_altitude_sigma_m),
+          d_heading_filter(cfg.loiter_heading_gain),
           d_next_fit_s(cfg.locate_orbits * 2.0 * M_PI * cfg.loiter_radius_m /
                        cfg.speed_mps)
     {
@@ -85,6 +87,8 @@ public:
                 d_retargets = 0;
                 d_last_slot = m.slot;
                 d_last_heading = h;
+                d_heading_filter.reset(h);
+                d_read_slot = m.slot;
                 d_heading_cmd = h; // the orbit starts from the heading flown
                 c.heading_rad = wrap_remainder(d_heading_cmd + turn_per_slot());
                 d_heading_cmd = c.heading_rad;
@@ -217,13 +221,20 @@ private:
         c.slot = m.slot;
         c.stage = 3;
         // Dead reckoning: the legs since the previous measurement (one per slot: a
-        // beacon missed by the receiver leaves a gap) at the mean of the two measured
-        // headings, at the airspeed.
+        // beacon missed by the receiver leaves a gap) at the mean of the two headings,
+        // at the airspeed. The heading is the read smoothed by loiter_heading_gain
+        // (heading_filter.h), or the command where there is no read.
         const std::uint64_t slots =
             m.slot > d_last_slot ? std::min<std::uint64_t>(m.slot - d_last_slot, 1000)
                                  : 1;
         d_last_slot = std::max(d_last_slot, m.slot);
-        const double h = m.has_heading ? m.heading_rad : d_heading_cmd;
+        double h = d_heading_cmd;
+        if (m.has_heading && std::isfinite(m.heading_rad)) {
+            const double since =
+                m.slot > d_read_slot ? static_cast<double>(m.slot - d_read_slot) : 1.0;
+            h = d_heading_filter.update(m.heading_rad, since * d_cfg.slot_period_s);
+            d_read_slot = std::max(d_read_slot, m.slot);
+        }
         const double mean = d_last_heading + 0.5 * wrap_remainder(h - d_last_heading);
         const double step = d_cfg.speed_mps * d_cfg.slot_period_s * slots;
         d_x += step * std::cos(mean);
@@ -365,7 +376,9 @@ private:
     double d_deadline_s = 0.0;  // loiter time after which the vehicle gives up
     emitter_location d_pending; // confirmed fix, published with the next slot
     double d_heading_cmd = 0.0, d_last_heading = 0.0, d_loiter_start = 0.0;
-    double d_x = 0.0, d_y = 0.0; // dead-reckoned, origin where the loiter began
+    heading_filter d_heading_filter; // the heading read, smoothed for dead reckoning
+    std::uint64_t d_read_slot = 0;   // slot of the last heading read
+    double d_x = 0.0, d_y = 0.0;     // dead-reckoned, origin where the loiter began
     std::uint64_t d_last_slot = 0;
     emitter_location d_location;
     double d_next_fit_s;

@@ -109,6 +109,10 @@ void validate_arrival(const seeker_config& c)
     if (!(c.loiter_radius_m >= c.speed_mps * c.slot_period_s / M_PI &&
           c.loiter_radius_m <= 1e5))
         bad("loiter_radius_m", c.loiter_radius_m, "in [v T_slot / pi, 1e5] m");
+    if (!(c.loiter_heading_gain > 0.0 && c.loiter_heading_gain <= 1.0))
+        bad("loiter_heading_gain",
+            c.loiter_heading_gain,
+            "in (0, 1] (1: the heading read itself)");
     const turn_limits lim = turn_limits_of(c);
     if (c.self_arrival && lim.limited() && c.loiter_radius_m < lim.min_radius_m())
         bad("loiter_radius_m",
@@ -270,6 +274,7 @@ std::vector<std::string> seeker_config::keys()
              "arrival_far_amplitude",
              "arrival_confirm_m",
              "loiter_radius_m",
+             "loiter_heading_gain",
              "locate_orbits",
              "locate_max_orbits",
              "locate_retry",
@@ -363,6 +368,7 @@ const std::map<std::string, seeker_setting>& settings()
         RFSEEK_SETTING(arrival_far_amplitude, arrival_far_amplitude, real),
         RFSEEK_SETTING(arrival_confirm_m, arrival_confirm_m, real),
         RFSEEK_SETTING(loiter_radius_m, loiter_radius_m, real),
+        RFSEEK_SETTING(loiter_heading_gain, loiter_heading_gain, real),
         RFSEEK_SETTING(locate_orbits, locate_orbits, real),
         RFSEEK_SETTING(locate_max_orbits, locate_max_orbits, real),
         RFSEEK_SETTING(locate_retry, locate_retry, boolean),

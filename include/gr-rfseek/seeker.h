@@ -130,6 +130,10 @@ struct RFSEEK_API seeker_config {
     //! checked only with locate_altitude_m >= 50 m, docs/seeker.md).
     double arrival_far_amplitude = 0.9;
     double loiter_radius_m = 25.0; //!< orbit radius (turn rate v / R, to the left)
+    //! The loiter dead-reckons, and the locator models the air velocity, with the
+    //! heading read smoothed by an alpha-beta filter (heading and turn rate) of this
+    //! gain, in (0, 1]; 1: the read itself (an autopilot's already filtered heading).
+    double loiter_heading_gain = 0.3;
     //! Arrival is declared when a location fit falls within this distance of the
     //! estimate the vehicle orbits (m); 0: declared on the overflight alone.
     double arrival_confirm_m = 30.0;

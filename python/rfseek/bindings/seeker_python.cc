@@ -4,7 +4,7 @@
  */
 
 /* BINDTOOL_HEADER_FILE(seeker.h) */
-/* BINDTOOL_HEADER_FILE_HASH(56d0f155bdfbdd3899a2f34814c88e29) */
+/* BINDTOOL_HEADER_FILE_HASH(1d4e9b1502fde334c0e5f0d4f2f83168) */
 
 #include "kwargs.h"
 #include <gr-rfseek/seeker.h>
@@ -41,6 +41,9 @@ void bind_arrival_fields(py::class_<gr::rfseek::seeker_config>& c)
        "arrival is declared when a location fit falls within this distance of the "
        "estimate orbited, by the vehicle (m; 0: on the overflight alone)");
     RW(loiter_radius_m, "loiter orbit radius (m), flown to the left");
+    RW(loiter_heading_gain,
+       "gain in (0, 1] of the alpha-beta filter that smooths the heading read for the "
+       "loiter's dead reckoning and location fits (1: the read itself)");
     RW(locate_orbits, "orbits of data before the first location fit");
     RW(locate_max_orbits,
        "no fix after this many orbits (extended by each move of the estimate and by the "

@@ -44,6 +44,8 @@ overflight_config detector_config(const seeker_config& c)
     o.window_s = c.arrival_window_s;
     o.heading_band_rad = c.arrival_heading_band_rad;
     o.power_rise_db = c.arrival_power_rise_db;
+    o.near_swing = c.arrival_near_swing;
+    o.near_power_db = c.arrival_near_power_db;
     o.block_slots = c.arrival_block_slots;
     o.confirm_blocks = c.arrival_confirm_blocks;
     o.min_snr_db = c.min_snr_db;

@@ -147,9 +147,21 @@ overflight_detector::overflight_detector(const overflight_config& cfg) : d_cfg(c
         bad("confirm_blocks", "in [1, 1000]");
     if (!(cfg.encircle_amplitude >= 0.0 && cfg.encircle_amplitude <= 1.0))
         bad("encircle_amplitude", "in [0, 1] (0: off)");
+    if (!(cfg.near_swing == 0.0 ||
+          (cfg.near_swing >= 0.5 && cfg.near_swing <= cfg.swing)))
+        bad("near_swing", "0 (off) or in [0.5, swing]");
+    if (!(cfg.near_power_db >= 0.0 && cfg.near_power_db <= 100.0))
+        bad("near_power_db", "in [0, 100] dB");
     if (std::isnan(cfg.min_snr_db))
         bad("min_snr_db", "a number");
     reset();
+}
+
+double overflight_detector::start_power_db() const
+{
+    if (static_cast<int>(d_start_powers.size()) < START_BLOCKS)
+        return std::numeric_limits<double>::quiet_NaN();
+    return median(d_start_powers);
 }
 
 void overflight_detector::reset()
@@ -160,6 +172,7 @@ void overflight_detector::reset()
     d_in_block = 0;
     d_blocks.clear();
     d_hits = 0;
+    d_near_hits = 0;
     d_circle_hits = 0;
     d_detected = false;
     d_encircled = false;
@@ -286,9 +299,16 @@ void overflight_detector::close_block()
         d_last_amplitude = NAN;
         return;
     }
+    if (static_cast<int>(d_start_powers.size()) < START_BLOCKS &&
+        std::isfinite(b.power_db))
+        d_start_powers.push_back(b.power_db);
     const double a = d_cfg.max_doppler_hz;
+    // Near the emitter (the power well above the start's) a smaller drop suffices.
+    const double near_level = d_cfg.near_swing > 0.0
+                                  ? start_power_db() + d_cfg.near_power_db
+                                  : std::numeric_limits<double>::quiet_NaN();
     double lo = b.heading_lo, hi = b.heading_hi, pmax = b.power_db;
-    double best = -std::numeric_limits<double>::infinity();
+    double best = -std::numeric_limits<double>::infinity(), best_near = best;
     for (std::size_t i = d_blocks.size() - 1; i-- > 0;) {
         const block& j = d_blocks[i];
         if (b.time_s - j.time_s > d_cfg.window_s)
@@ -305,12 +325,18 @@ void overflight_detector::close_block()
             continue;
         if (std::isnan(j.drift))
             continue; // the CFO drift before j is not known yet
-        best = std::max(best,
-                        j.freq_hz - b.freq_hz - a * (1.0 - std::cos(dpsi)) +
-                            j.drift * (b.time_s - j.time_s));
+        const double drop = j.freq_hz - b.freq_hz - a * (1.0 - std::cos(dpsi)) +
+                            j.drift * (b.time_s - j.time_s);
+        best = std::max(best, drop);
+        if (pmax >= near_level) // false while the start's power is not known
+            best_near = std::max(best_near, drop);
     }
     d_last_drop = std::isfinite(best) ? best : 0.0;
     d_hits = best >= d_cfg.swing * a ? d_hits + 1 : 0;
+    d_near_hits =
+        d_cfg.near_swing > 0.0 && best_near >= d_cfg.near_swing * a ? d_near_hits + 1 : 0;
+    if (d_near_hits >= d_cfg.confirm_blocks)
+        d_hits = std::max(d_hits, d_near_hits);
     // Encircling: headings all round while the far-field Doppler amplitude has
     // collapsed (the bearing to the emitter turns with the vehicle).
     d_last_amplitude = ff.amplitude;

@@ -92,6 +92,13 @@ void validate_arrival(const seeker_config& c)
         bad("arrival_heading_band_rad", c.arrival_heading_band_rad, "in (0, pi]");
     if (!(c.arrival_power_rise_db >= 0.0 && c.arrival_power_rise_db <= 100.0))
         bad("arrival_power_rise_db", c.arrival_power_rise_db, "in [0, 100] dB");
+    if (!(c.arrival_near_swing == 0.0 ||
+          (c.arrival_near_swing >= 0.5 && c.arrival_near_swing <= c.arrival_swing)))
+        bad("arrival_near_swing",
+            c.arrival_near_swing,
+            "0 (off) or in [0.5, arrival_swing] (x f_d,max)");
+    if (!(c.arrival_near_power_db >= 0.0 && c.arrival_near_power_db <= 100.0))
+        bad("arrival_near_power_db", c.arrival_near_power_db, "in [0, 100] dB");
     if (c.arrival_block_slots < 1 || c.arrival_block_slots > 100000)
         bad("arrival_block_slots", c.arrival_block_slots, "in [1, 100000]");
     if (c.arrival_confirm_blocks < 1 || c.arrival_confirm_blocks > 1000)
@@ -268,6 +275,8 @@ std::vector<std::string> seeker_config::keys()
              "arrival_heading_band_rad",
              "arrival_heading_band_deg",
              "arrival_power_rise_db",
+             "arrival_near_swing",
+             "arrival_near_power_db",
              "arrival_block_slots",
              "arrival_confirm_blocks",
              "arrival_encircle",
@@ -362,6 +371,8 @@ const std::map<std::string, seeker_setting>& settings()
         RFSEEK_SETTING(arrival_heading_band_rad, arrival_heading_band_rad, real),
         RFSEEK_SETTING(arrival_heading_band_deg, arrival_heading_band_rad, degrees),
         RFSEEK_SETTING(arrival_power_rise_db, arrival_power_rise_db, real),
+        RFSEEK_SETTING(arrival_near_swing, arrival_near_swing, real),
+        RFSEEK_SETTING(arrival_near_power_db, arrival_near_power_db, real),
         RFSEEK_SETTING(arrival_block_slots, arrival_block_slots, integer),
         RFSEEK_SETTING(arrival_confirm_blocks, arrival_confirm_blocks, integer),
         RFSEEK_SETTING(arrival_encircle, arrival_encircle, real),

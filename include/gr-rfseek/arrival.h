@@ -44,6 +44,12 @@ struct RFSEEK_API overflight_config {
     //! Encircling: detected also when, over drift_s with headings all round, the
     //! far-field Doppler amplitude stays below this x f_d,max (0: off).
     double encircle_amplitude = 0.35;
+    //! Near the emitter a smaller drop suffices: near_swing x f_d,max (in [0.5, swing];
+    //! 0: off) once the power over the drop has risen near_power_db above the beacon's
+    //! power when the detector was made (the median of its first START_BLOCKS usable
+    //! blocks). Into a headwind the Doppler's swing shrinks with the ground speed.
+    double near_swing = 0.5;
+    double near_power_db = 25.0; //!< dB above the start's power (0..100)
 };
 
 /*!
@@ -113,7 +119,12 @@ public:
     double last_amplitude_hz() const { return d_last_amplitude; }
     //! The detection came from the encircling signature, not an overflight.
     bool encircled() const { return d_encircled; }
+    //! The beacon's power when the detector was made: the median of its first
+    //! START_BLOCKS usable blocks (dB; NaN until then). reset() keeps it.
+    double start_power_db() const;
+    static constexpr int START_BLOCKS = 15;
     const overflight_config& config() const { return d_cfg; }
+    //! Forget the approach (a new one); the start's power is kept.
     void reset();
 
 private:
@@ -141,7 +152,9 @@ private:
     int d_in_block = 0;
     std::vector<block> d_blocks;
     int d_hits = 0;
+    int d_near_hits = 0; // blocks in a row with the near-emitter drop (near_swing)
     int d_circle_hits = 0;
+    std::vector<double> d_start_powers; // the first START_BLOCKS usable blocks' power
     bool d_detected = false;
     bool d_encircled = false;
     double d_last_amplitude = 0.0;

@@ -120,8 +120,13 @@ struct RFSEEK_API seeker_config {
     double arrival_window_s = 90.0; //!< the drop must happen within this time
     double arrival_heading_band_rad = 1.0471975511965976; //!< 60 deg spread allowed
     double arrival_power_rise_db = 2.0; //!< power peak over the drop's lower end
-    int arrival_block_slots = 40;       //!< slots per median block
-    int arrival_confirm_blocks = 2;     //!< consecutive blocks with the signature
+    //! Near the emitter (the power arrival_near_power_db above the start's) a drop of
+    //! arrival_near_swing x f_d,max suffices (0: off; else in [0.5, arrival_swing]):
+    //! a pass into a headwind swings by the ground speed's Doppler only.
+    double arrival_near_swing = 0.5;
+    double arrival_near_power_db = 25.0; //!< dB above the beacon's power at the start
+    int arrival_block_slots = 40;        //!< slots per median block
+    int arrival_confirm_blocks = 2;      //!< consecutive blocks with the signature
     //! Encircling signature: headings all round over 120 s with the far-field Doppler
     //! amplitude below this x f_d,max (0: off; docs/seeker.md).
     double arrival_encircle = 0.35;

@@ -4,7 +4,7 @@
  */
 
 /* BINDTOOL_HEADER_FILE(arrival.h) */
-/* BINDTOOL_HEADER_FILE_HASH(79d85a911938245822721c334218f8af) */
+/* BINDTOOL_HEADER_FILE_HASH(24dbace9bbb4d1e55cb7e19b189d2feb) */
 
 #include <gr-rfseek/arrival.h>
 #include <pybind11/pybind11.h>
@@ -56,7 +56,15 @@ void bind_overflight_config_class(py::module& m)
             "encircle_amplitude",
             &overflight_config::encircle_amplitude,
             "Encircling: detected also when, over drift_s with headings all round, the "
-            "far-field Doppler amplitude stays below this x f_d,max (0: off).");
+            "far-field Doppler amplitude stays below this x f_d,max (0: off).")
+        .def_readwrite("near_swing",
+                       &overflight_config::near_swing,
+                       "Near the emitter a smaller drop suffices: near_swing x f_d,max "
+                       "(in [0.5, swing]; 0: off) once the power over the drop has risen "
+                       "near_power_db above the beacon's power at the start.")
+        .def_readwrite("near_power_db",
+                       &overflight_config::near_power_db,
+                       "dB above the start's power (0..100)");
 }
 
 void bind_doppler_amplitude_class(py::module& m)
@@ -126,7 +134,15 @@ void bind_overflight_detector_class(py::module& m)
             "encircled",
             &overflight_detector::encircled,
             "The detection came from the encircling signature, not an overflight.")
-        .def("reset", &overflight_detector::reset, "Forget everything (a new approach).");
+        .def_property_readonly(
+            "start_power_db",
+            &overflight_detector::start_power_db,
+            "The beacon's power when the detector was made: the median "
+            "of its first START_BLOCKS usable blocks (dB; NaN until "
+            "then). reset() keeps it.")
+        .def("reset",
+             &overflight_detector::reset,
+             "Forget the approach (a new one); the start's power is kept.");
 }
 
 void bind_emitter_location_class(py::module& m)

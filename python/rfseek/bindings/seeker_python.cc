@@ -4,7 +4,7 @@
  */
 
 /* BINDTOOL_HEADER_FILE(seeker.h) */
-/* BINDTOOL_HEADER_FILE_HASH(1d4e9b1502fde334c0e5f0d4f2f83168) */
+/* BINDTOOL_HEADER_FILE_HASH(0b7f4ffd84b62b5b31a7cf62a3c72ee5) */
 
 #include "kwargs.h"
 #include <gr-rfseek/seeker.h>
@@ -29,6 +29,12 @@ void bind_arrival_fields(py::class_<gr::rfseek::seeker_config>& c)
     RW(arrival_heading_band_rad,
        "overflight: heading spread allowed over the drop (rad)");
     RW(arrival_power_rise_db, "overflight: power peak above the drop's lower end (dB)");
+    RW(arrival_near_swing,
+       "overflight near the emitter (power arrival_near_power_db above the start's): "
+       "this drop x f_d,max suffices (0: off; else in [0.5, arrival_swing])");
+    RW(arrival_near_power_db,
+       "overflight: the power rise over the beacon's power at the start (dB) from which "
+       "arrival_near_swing applies");
     RW(arrival_block_slots, "overflight: slots per median block");
     RW(arrival_confirm_blocks, "overflight: consecutive blocks with the signature");
     RW(arrival_encircle,

@@ -23,10 +23,10 @@ class heading_filter
 public:
     //! gain: alpha in (0, 1]; beta = alpha^2 / (2 - alpha) (Benedict-Bordner). 1: the
     //! read itself.
-    explicit heading_filter(double gain)
-        : d_alpha(gain), d_beta(gain * gain / (2.0 - gain))
-    {
-    }
+    explicit heading_filter(double gain) : d_alpha(gain), d_beta(beta_of(gain)) {}
+
+    //! The rate gain that goes with alpha (Benedict-Bordner).
+    static double beta_of(double alpha) { return alpha * alpha / (2.0 - alpha); }
 
     //! Starts over at a read (the rate taken as 0).
     void reset(double heading_rad)
@@ -62,7 +62,7 @@ public:
     //! Steady-state variance of the filtered heading over that of white read noise.
     static double noise_ratio(double gain)
     {
-        const double a = gain, b = gain * gain / (2.0 - gain);
+        const double a = gain, b = beta_of(gain);
         return (2.0 * a * a + 2.0 * b - 3.0 * a * b) / (a * (4.0 - 2.0 * a - b));
     }
 

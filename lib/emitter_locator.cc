@@ -205,7 +205,8 @@ double inflation_of(const problem& pr, const Eigen::VectorXd& r, int used, doubl
 bool ellipse(const gust_fit& fit,
              const Eigen::VectorXd& th,
              double var,
-             emitter_location& out)
+             emitter_location& out,
+             Eigen::Matrix4d* cov4 = nullptr)
 {
     Eigen::MatrixXd N;
     Eigen::VectorXd g, r;
@@ -222,6 +223,10 @@ bool ellipse(const gust_fit& fit,
     out.minor_m = std::sqrt(chi2_95 * std::max(tr - disc, 0.0));
     out.major_angle_rad = 0.5 * std::atan2(2.0 * sxy, sxx - syy);
     out.wind_sigma_mps = std::sqrt(std::max(0.5 * var * (cov(2, 2) + cov(3, 3)), 0.0));
+    if (cov4) {
+        const Eigen::Matrix4d c = var * cov.topRows(4);
+        *cov4 = 0.5 * (c + c.transpose());
+    }
     return true;
 }
 
@@ -229,11 +234,25 @@ bool ellipse(const gust_fit& fit,
 
 emitter_location emitter_locator::fit(double vehicle_x_m, double vehicle_y_m) const
 {
+    return fit_range(0, d_t.size(), vehicle_x_m, vehicle_y_m, nullptr);
+}
+
+emitter_location emitter_locator::fit_range(std::size_t begin,
+                                            std::size_t end,
+                                            double vehicle_x_m,
+                                            double vehicle_y_m,
+                                            std::array<double, 16>* cov_out) const
+{
     emitter_location out;
-    const std::size_t n = d_t.size();
-    if (n < 50)
+    if (end > d_t.size() || begin >= end || end - begin < 50)
         return out;
-    problem pr{ d_t, d_x, d_y, d_vx, d_vy, d_f, d_lambda, d_t.back(), {}, 1 };
+    const std::size_t n = end - begin;
+    auto slice = [&](const std::vector<double>& v) {
+        return std::vector<double>(v.begin() + begin, v.begin() + end);
+    };
+    const std::vector<double> t = slice(d_t), x = slice(d_x), y = slice(d_y),
+                              vx = slice(d_vx), vy = slice(d_vy), f = slice(d_f);
+    problem pr{ t, x, y, vx, vy, f, d_lambda, t.back(), {}, 1 };
     pr.use.assign(n, 1);
     out.time_s = pr.tf;
     out.dr_x_m = vehicle_x_m;
@@ -279,8 +298,11 @@ emitter_location emitter_locator::fit(double vehicle_x_m, double vehicle_y_m) co
     double c0 = 0.0, r0 = 0.0;
     fin->residuals(th, r, nullptr, &c0);
     const double inflation = inflation_of(pr, r, used, r0);
-    if (!ellipse(*fin, th, s2 * inflation, out))
+    Eigen::Matrix4d c4;
+    if (!ellipse(*fin, th, s2 * inflation, out, &c4))
         return out;
+    if (cov_out)
+        Eigen::Map<Eigen::Matrix4d>(cov_out->data()) = c4;
     out.east_m = th(0) - vehicle_x_m;
     out.north_m = th(1) - vehicle_y_m;
     out.wind_east_mps = th(2);
@@ -295,6 +317,52 @@ emitter_location emitter_locator::fit(double vehicle_x_m, double vehicle_y_m) co
                 std::isfinite(out.wind_sigma_mps) && std::isfinite(out.altitude_m) &&
                 std::isfinite(out.cfo_hz);
     return out;
+}
+
+bool emitter_locator::check_split(emitter_location& l, double gate) const
+{
+    const std::size_t n = d_t.size();
+    if (!l.valid || !(gate >= 0.0) || n < 2 * SPLIT_MIN)
+        return false;
+    // The halves in time: the gusts' drift and the geometry differ between them, which
+    // is what an ellipse too narrow for the air of the day misses.
+    const double ts = 0.5 * (d_t.front() + d_t.back());
+    const std::size_t m = static_cast<std::size_t>(
+        std::lower_bound(d_t.begin(), d_t.end(), ts) - d_t.begin());
+    if (m < SPLIT_MIN || n - m < SPLIT_MIN)
+        return false;
+    std::array<double, 16> ca_raw, cb_raw;
+    const emitter_location a = fit_range(0, m, 0.0, 0.0, &ca_raw);
+    const emitter_location b = fit_range(m, n, 0.0, 0.0, &cb_raw);
+    if (!a.valid || !b.valid)
+        return false;
+    const Eigen::Matrix4d ca = Eigen::Map<const Eigen::Matrix4d>(ca_raw.data());
+    const Eigen::Matrix4d cb = Eigen::Map<const Eigen::Matrix4d>(cb_raw.data());
+    // The first half's emitter carried to the second's time with its own wind (in the
+    // air frame the emitter drifts by minus the wind), its covariance with it; the
+    // halves share no data, so the covariances add.
+    const double dt = b.time_s - a.time_s;
+    Eigen::Matrix<double, 2, 4> J;
+    J << 1.0, 0.0, -dt, 0.0, 0.0, 1.0, 0.0, -dt;
+    const Eigen::Matrix2d c = J * ca * J.transpose() + cb.topLeftCorner<2, 2>();
+    const Eigen::Vector2d d(a.east_m - a.wind_east_mps * dt - b.east_m,
+                            a.north_m - a.wind_north_mps * dt - b.north_m);
+    const Eigen::LDLT<Eigen::Matrix2d> ldlt(c);
+    if (ldlt.info() != Eigen::Success || !(c.determinant() > 0.0))
+        return false;
+    const double T = d.dot(ldlt.solve(d));
+    if (!std::isfinite(T) || T < 0.0)
+        return false;
+    l.consistency = T;
+    if (gate > 0.0 && T > gate) {
+        // The halves disagree beyond what their ellipses allow: the covariance is
+        // scaled by T / 2, the factor by which the disagreement exceeds its mean.
+        const double k = std::sqrt(0.5 * T);
+        l.major_m *= k;
+        l.minor_m *= k;
+        l.wind_sigma_mps *= k;
+    }
+    return true;
 }
 
 } // namespace rfseek

@@ -267,7 +267,7 @@ private:
             // overflight (a gust, a turn). Seek on at once.
             return resume_seeking(m);
         } else if (!d_done && loitered >= d_next_fit_s) {
-            const emitter_location l = d_locator.fit(d_x, d_y);
+            emitter_location l = d_locator.fit(d_x, d_y);
             // A fit is steered by once its ellipse fits in the locator's search area
             // (one orbit far from the emitter can run off to kilometres).
             const bool usable =
@@ -286,6 +286,10 @@ private:
                 const double transit = retarget(l, m.time_s);
                 if (agrees) {
                     const bool fix = l.major_m <= d_cfg.locate_max_axis_m;
+                    // The fix's ellipse, checked against its data's halves (after the
+                    // retarget above, which it does not change).
+                    if (fix && d_cfg.locate_split_gate > 0.0)
+                        d_locator.check_split(l, d_cfg.locate_split_gate);
                     if (d_status == 0) { // arrived now; located with the next slot
                         d_status = 1;
                         if (fix)

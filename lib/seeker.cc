@@ -136,6 +136,8 @@ void validate_arrival(const seeker_config& c)
         bad("locate_gust_mps", c.locate_gust_mps, "in [0, 50] m/s");
     if (!(c.locate_gust_tau_s >= 0.1 && c.locate_gust_tau_s <= 3600.0))
         bad("locate_gust_tau_s", c.locate_gust_tau_s, "in [0.1, 3600] s");
+    if (!(c.locate_split_gate >= 0.0 && c.locate_split_gate <= 1e6))
+        bad("locate_split_gate", c.locate_split_gate, "0 (off) or in (0, 1e6]");
     if (!std::isnan(c.locate_altitude_m) &&
         !(c.locate_altitude_m >= 0.0 && c.locate_altitude_m <= 1e4))
         bad("locate_altitude_m", c.locate_altitude_m, "in [0, 1e4] m, or NaN (unknown)");
@@ -290,6 +292,7 @@ std::vector<std::string> seeker_config::keys()
              "locate_max_axis_m",
              "locate_gust_mps",
              "locate_gust_tau_s",
+             "locate_split_gate",
              "locate_altitude_m",
              "locate_altitude_sigma_m" };
 }
@@ -386,6 +389,7 @@ const std::map<std::string, seeker_setting>& settings()
         RFSEEK_SETTING(locate_max_axis_m, locate_max_axis_m, real),
         RFSEEK_SETTING(locate_gust_mps, locate_gust_mps, real),
         RFSEEK_SETTING(locate_gust_tau_s, locate_gust_tau_s, real),
+        RFSEEK_SETTING(locate_split_gate, locate_split_gate, real),
         RFSEEK_SETTING(locate_altitude_m, locate_altitude_m, real),
         RFSEEK_SETTING(locate_altitude_sigma_m, locate_altitude_sigma_m, real),
     };

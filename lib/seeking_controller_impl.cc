@@ -244,6 +244,7 @@ void seeking_controller_impl::publish_status(const command& c, double time_s)
         add("altitude_m", l.altitude_m);
         add("fix_time", l.time_s);
         add("rms_hz", l.rms_hz);
+        add("consistency", l.consistency);
     }
     message_port_pub(d_port_status, s);
 }

@@ -182,6 +182,7 @@ struct RFSEEK_API emitter_location {
     int used = 0;                //!< measurements in the fit (inliers)
     int gust_knots = 0;          //!< gust states per axis (0: constant wind)
     double inflation = 1.0;      //!< covariance inflation for correlated residuals
+    double consistency = -1.0;   //!< the split check's T (check_split; -1: not run)
 };
 
 /*!
@@ -221,8 +222,25 @@ public:
     void clear();
     //! Fit everything added; vehicle_x/y: its dead-reckoned position at the fix.
     emitter_location fit(double vehicle_x_m, double vehicle_y_m) const;
+    /*!
+     * The split check of l, the fit of everything added: the two halves of the data in
+     * time are fitted apart, and l.consistency is set to their disagreement T in the
+     * metric of their covariances (the first half's estimate carried to the second's
+     * time with its own wind). For ellipses that are right, T is chi-square with 2
+     * degrees of freedom (mean 2, 95 % below 5.99). Where T exceeds gate (> 0) the
+     * ellipse and wind_sigma_mps grow by sqrt(T / 2); gate 0 only measures. Returns
+     * false, l unchanged, when l is not valid, gate is negative or NaN, there are fewer
+     * than SPLIT_MIN measurements in either half or a half does not fit.
+     */
+    bool check_split(emitter_location& l, double gate) const;
+    static constexpr std::size_t SPLIT_MIN = 100;
 
 private:
+    emitter_location fit_range(std::size_t begin,
+                               std::size_t end,
+                               double vehicle_x_m,
+                               double vehicle_y_m,
+                               std::array<double, 16>* cov_out) const;
     double d_lambda, d_search, d_gust, d_gust_tau, d_alt, d_alt_sigma;
     std::vector<double> d_t, d_x, d_y, d_vx, d_vy, d_f;
 };

@@ -156,6 +156,11 @@ struct RFSEEK_API seeker_config {
     //! 2 to 30 s (docs/seeker.md, "The locator across the envelope").
     double locate_gust_mps = 1.5;
     double locate_gust_tau_s = 4.0;
+    //! The fix's split check (emitter_locator::check_split): the halves of its data in
+    //! time fitted apart; where their disagreement T (chi-square, 2 degrees of freedom
+    //! for a right ellipse) exceeds this gate, the published ellipse grows by
+    //! sqrt(T / 2). 5.99: the 95 % point; 0: off.
+    double locate_split_gate = 5.99;
     //! The vehicle's height above the ground the emitter stands on, as its altimeter /
     //! autopilot holds it (m; NaN: unknown): the location fit's prior on the height,
     //! with std locate_altitude_sigma_m, the altimeter's stated accuracy (m; 0: the

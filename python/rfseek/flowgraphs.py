@@ -145,7 +145,7 @@ def arrival_summary(states, status, telemetry=None):
                    location={k: fix[k] for k in (
                        "east_m", "north_m", "range_m", "bearing_rad", "major_m", "minor_m",
                        "major_angle_rad", "wind_east_mps", "wind_north_mps", "altitude_m",
-                       "rms_hz")},
+                       "rms_hz", "consistency")},
                    vehicle_xy_at_fix=(st["x"], st["y"]),
                    estimated_emitter_xy=(st["x"] + fix["east_m"], st["y"] + fix["north_m"]),
                    location_error_m=math.hypot(ex, ey),

@@ -144,11 +144,15 @@ class qa_montecarlo(gr_unittest.TestCase):
         # adaptive runs: the location fit with gust states and the height prior meets the
         # issue's targets at relaxed bounds, and its 95 % ellipse is honest where the
         # constant-wind fit without priors (which reads the integrated gust as position)
-        # is overconfident, on the same seeds (200 runs: 87 % against 28 %).
+        # is overconfident, on the same seeds (200 runs: 87 % against 28 %), its own
+        # ellipse measured without the split check. The split check, which fits the
+        # halves of each fix's data apart, sees the constant-wind fit fail and grows its
+        # ellipse: the same fixes are covered more often.
         errs, inside = {}, {}
+        const = ["--set", "locate_gust_mps=0", "--set", "locate_altitude_sigma_m=0"]
         for name, extra in (("map", []),
-                            ("const", ["--set", "locate_gust_mps=0",
-                                       "--set", "locate_altitude_sigma_m=0"])):
+                            ("const", const + ["--set", "locate_split_gate=0"]),
+                            ("const_checked", const)):
             p, out = run_mc(self.tmp, "real_" + name, "--runs", "30", "--strategy",
                             "adaptive", "--preset", "realistic", "--arrival", "self",
                             "--threads", "2", "--quiet", *extra)
@@ -169,6 +173,8 @@ class qa_montecarlo(gr_unittest.TestCase):
         self.assertLessEqual(percentile(e, 0.9), 80.0)
         self.assertGreaterEqual(inside["map"], 0.7 * len(e))
         self.assertLessEqual(inside["const"], 0.5 * len(errs["const"]))
+        self.assertEqual(errs["const_checked"], errs["const"])  # the same fixes
+        self.assertGreater(inside["const_checked"], inside["const"])
 
     def test_arrival_self_windy(self):
         # The windy preset (6 m/s wind, 2 m/s gusts of 15 s, compass, altimeter and

@@ -4,7 +4,7 @@
  */
 
 /* BINDTOOL_HEADER_FILE(arrival.h) */
-/* BINDTOOL_HEADER_FILE_HASH(24dbace9bbb4d1e55cb7e19b189d2feb) */
+/* BINDTOOL_HEADER_FILE_HASH(3c72115dedc7d1ba8ff28f0570c8d7f8) */
 
 #include <gr-rfseek/arrival.h>
 #include <pybind11/pybind11.h>
@@ -192,7 +192,12 @@ void bind_emitter_location_class(py::module& m)
                       "covariance inflation for correlated residuals")
         .def_readonly("gust_knots",
                       &emitter_location::gust_knots,
-                      "gust states per axis (0: constant wind)");
+                      "gust states per axis (0: constant wind)")
+        .def_readonly("consistency",
+                      &emitter_location::consistency,
+                      "the split check's T: the disagreement of the data's halves, "
+                      "chi-square with 2 degrees of freedom for a right ellipse (-1: "
+                      "not run)");
 }
 
 void bind_emitter_locator_class(py::module& m)
@@ -231,7 +236,24 @@ void bind_emitter_locator_class(py::module& m)
              py::arg("vehicle_x_m"),
              py::arg("vehicle_y_m"),
              py::call_guard<py::gil_scoped_release>(),
-             "Fit everything added; vehicle_x/y: its dead-reckoned position at the fix.");
+             "Fit everything added; vehicle_x/y: its dead-reckoned position at the fix.")
+        .def(
+            "check_split",
+            [](const emitter_locator& self, emitter_location l, double gate) {
+                if (!(gate >= 0.0))
+                    throw py::value_error("check_split: gate must be >= 0 (0: measure "
+                                          "only)");
+                self.check_split(l, gate);
+                return l;
+            },
+            py::arg("location"),
+            py::arg("gate") = 5.99,
+            py::call_guard<py::gil_scoped_release>(),
+            "The split check of `location` (a fit of everything added): the halves of "
+            "the data in time fitted apart; returns a copy with `consistency` = their "
+            "disagreement T (chi-square, 2 degrees of freedom for a right ellipse; -1: "
+            "not run: an invalid fit or under 100 measurements per half) and, where T "
+            "exceeds gate (> 0), the ellipse and wind_sigma_mps grown by sqrt(T / 2).");
 }
 
 } // namespace

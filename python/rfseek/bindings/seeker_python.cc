@@ -4,7 +4,7 @@
  */
 
 /* BINDTOOL_HEADER_FILE(seeker.h) */
-/* BINDTOOL_HEADER_FILE_HASH(0b7f4ffd84b62b5b31a7cf62a3c72ee5) */
+/* BINDTOOL_HEADER_FILE_HASH(4d64ac56090df358ca6d3044a7e722bc) */
 
 #include "kwargs.h"
 #include <gr-rfseek/seeker.h>
@@ -60,6 +60,10 @@ void bind_arrival_fields(py::class_<gr::rfseek::seeker_config>& c)
     RW(locate_gust_mps,
        "location fit: gust prior, std per axis (m/s; 0: a constant wind only)");
     RW(locate_gust_tau_s, "location fit: gust correlation time (s)");
+    RW(locate_split_gate,
+       "the fix's split check: where the disagreement T of its data's halves exceeds "
+       "this (chi-square, 2 dof; 5.99: the 95 % point), the ellipse grows by "
+       "sqrt(T / 2); 0: off");
     RW(locate_altitude_m,
        "location fit: the vehicle's height above the emitter's ground as its altimeter "
        "holds it (m; NaN: unknown, no height prior)");

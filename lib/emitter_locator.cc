@@ -247,12 +247,17 @@ emitter_location emitter_locator::fit_range(std::size_t begin,
     if (end > d_t.size() || begin >= end || end - begin < 50)
         return out;
     const std::size_t n = end - begin;
-    auto slice = [&](const std::vector<double>& v) {
-        return std::vector<double>(v.begin() + begin, v.begin() + end);
-    };
-    const std::vector<double> t = slice(d_t), x = slice(d_x), y = slice(d_y),
-                              vx = slice(d_vx), vy = slice(d_vy), f = slice(d_f);
-    problem pr{ t, x, y, vx, vy, f, d_lambda, t.back(), {}, 1 };
+    // A part of the data (the split check) is copied out; the whole is fitted in place.
+    const bool whole = begin == 0 && end == d_t.size();
+    std::vector<double> part[6];
+    const std::vector<double>* src[6] = { &d_t, &d_x, &d_y, &d_vx, &d_vy, &d_f };
+    if (!whole)
+        for (int i = 0; i < 6; ++i) {
+            part[i].assign(src[i]->begin() + begin, src[i]->begin() + end);
+            src[i] = &part[i];
+        }
+    problem pr{ *src[0], *src[1],  *src[2],        *src[3], *src[4],
+                *src[5], d_lambda, src[0]->back(), {},      1 };
     pr.use.assign(n, 1);
     out.time_s = pr.tf;
     out.dr_x_m = vehicle_x_m;

@@ -157,13 +157,6 @@ overflight_detector::overflight_detector(const overflight_config& cfg) : d_cfg(c
     reset();
 }
 
-double overflight_detector::start_power_db() const
-{
-    if (static_cast<int>(d_start_powers.size()) < START_BLOCKS)
-        return std::numeric_limits<double>::quiet_NaN();
-    return median(d_start_powers);
-}
-
 void overflight_detector::reset()
 {
     d_f.clear();
@@ -300,12 +293,15 @@ void overflight_detector::close_block()
         return;
     }
     if (static_cast<int>(d_start_powers.size()) < START_BLOCKS &&
-        std::isfinite(b.power_db))
+        std::isfinite(b.power_db)) {
         d_start_powers.push_back(b.power_db);
+        if (static_cast<int>(d_start_powers.size()) == START_BLOCKS)
+            d_start_power = median(d_start_powers); // fixed from here on
+    }
     const double a = d_cfg.max_doppler_hz;
     // Near the emitter (the power well above the start's) a smaller drop suffices.
     const double near_level = d_cfg.near_swing > 0.0
-                                  ? start_power_db() + d_cfg.near_power_db
+                                  ? d_start_power + d_cfg.near_power_db
                                   : std::numeric_limits<double>::quiet_NaN();
     double lo = b.heading_lo, hi = b.heading_hi, pmax = b.power_db;
     double best = -std::numeric_limits<double>::infinity(), best_near = best;

@@ -22,6 +22,7 @@
 #include <gr-rfseek/api.h>
 #include <array>
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 namespace gr {
@@ -121,7 +122,7 @@ public:
     bool encircled() const { return d_encircled; }
     //! The beacon's power when the detector was made: the median of its first
     //! START_BLOCKS usable blocks (dB; NaN until then). reset() keeps it.
-    double start_power_db() const;
+    double start_power_db() const { return d_start_power; }
     static constexpr int START_BLOCKS = 15;
     const overflight_config& config() const { return d_cfg; }
     //! Forget the approach (a new one); the start's power is kept.
@@ -155,6 +156,7 @@ private:
     int d_near_hits = 0; // blocks in a row with the near-emitter drop (near_swing)
     int d_circle_hits = 0;
     std::vector<double> d_start_powers; // the first START_BLOCKS usable blocks' power
+    double d_start_power = std::numeric_limits<double>::quiet_NaN(); // their median
     bool d_detected = false;
     bool d_encircled = false;
     double d_last_amplitude = 0.0;

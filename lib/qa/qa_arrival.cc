@@ -575,8 +575,9 @@ TEST(homing_seeker, a_fit_whose_height_contradicts_the_altimeter_is_not_trusted)
     ASSERT_EQ(cfg.locate_altitude_sigma_m, 20.0);
     const run_result with_rule = simulation(sc, cfg).run(false);
     EXPECT_FALSE(with_rule.summary.false_arrival);
-    if (with_rule.summary.declared)
+    if (with_rule.summary.declared) {
         EXPECT_LT(with_rule.summary.arrival_detect_distance_m, 300.0);
+    }
     cfg.arrival_near_swing = 0.0;
     const run_result r = simulation(sc, cfg).run(true);
     const slot_record* loiter = nullptr;

@@ -4,7 +4,7 @@
  */
 
 /* BINDTOOL_HEADER_FILE(arrival.h) */
-/* BINDTOOL_HEADER_FILE_HASH(3c72115dedc7d1ba8ff28f0570c8d7f8) */
+/* BINDTOOL_HEADER_FILE_HASH(7191079ca6f1e46314e0608e84cc43eb) */
 
 #include <gr-rfseek/arrival.h>
 #include <pybind11/pybind11.h>

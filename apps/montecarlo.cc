@@ -104,8 +104,17 @@ int main(int argc, char** argv)
                     " was written by a study with other settings (" + study_file +
                     "); give the same --set/--scenario/--preset/--sweep/--seed "
                     "or another --out");
-            std::size_t dropped = 0;
-            t.resumed = load_rows(o.csv, lay, ix, rows, dropped);
+            std::size_t dropped = 0, outside = 0;
+            t.resumed = load_rows(o.csv, lay, ix, rows, dropped, outside);
+            // The CSV is rewritten with this study's rows only: refuse rather than
+            // lose finished runs that a narrower --strategy or --runs leaves out.
+            if (outside)
+                throw std::invalid_argument(
+                    "--resume: " + o.csv + " holds " + std::to_string(outside) +
+                    " finished row(s) of strategies or seeds this study does not "
+                    "run, which resuming would delete; give --strategy and --runs "
+                    "that include them (a study can grow, not shrink), or another "
+                    "--out");
             std::fprintf(stderr,
                          "rfseek-montecarlo: resuming: %zu of %zu rows already in %s%s\n",
                          t.resumed,

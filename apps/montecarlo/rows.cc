@@ -193,11 +193,13 @@ std::size_t load_rows(const std::string& csv,
                       const csv_layout& lay,
                       const study_index& ix,
                       std::vector<row>& rows,
-                      std::size_t& dropped)
+                      std::size_t& dropped,
+                      std::size_t& outside)
 {
     std::ifstream f(csv);
     std::string line;
     dropped = 0;
+    outside = 0;
     if (!std::getline(f, line))
         return 0;
     if (line != lay.header())
@@ -226,8 +228,10 @@ std::size_t load_rows(const std::string& csv,
                 if (points[p].preset() == preset && points[p].sweep_value() == sweep)
                     pi = p;
             if (st == ix.strategies.end() || pi == points.size() || seed < ix.seed ||
-                seed >= ix.seed + ix.runs)
-                continue; // another part of the CSV's study: not this one's
+                seed >= ix.seed + ix.runs) {
+                ++outside; // another part of the CSV's study: not this one's
+                continue;
+            }
             row r;
             r.strategy = *st;
             r.seed = seed;

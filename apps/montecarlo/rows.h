@@ -78,13 +78,16 @@ struct csv_layout {
 /*!
  * --resume: reads the rows of the CSV that belong to this study into their places
  * (malformed or truncated lines, e.g. the one a kill cut, are dropped and counted in
- * dropped); returns how many were loaded. Throws if the CSV has other columns.
+ * dropped; well-formed rows of strategies or seeds this study does not run are counted in
+ * outside); returns how many were loaded. Throws if the CSV has other
+ * columns.
  */
 std::size_t load_rows(const std::string& csv,
                       const csv_layout& lay,
                       const study_index& ix,
                       std::vector<row>& rows,
-                      std::size_t& dropped);
+                      std::size_t& dropped,
+                      std::size_t& outside);
 
 //! Everything that decides a study's rows but --runs and the strategies: written beside
 //! the CSV so that --resume refuses to mix rows of different studies.

@@ -143,6 +143,17 @@ class qa_study_backends(gr_unittest.TestCase):
         p, _ = run_mc(self.tmp, "cut", "--resume", *args, "--set", "snr_db=-5")
         self.assertEqual(p.returncode, 2)
         self.assertIn("other settings", p.stderr)
+        # A narrower study would rewrite the CSV without the rows it leaves out: refused,
+        # the CSV untouched (fewer runs, or one strategy of two).
+        before = read_text(csv_path)
+        fewer = ["6" if a == "12" else a for a in args]
+        one = ["paper" if a == "paper,adaptive" else a for a in args]
+        for narrower, outside in ((fewer, 24), (one, 24)):
+            p, _ = run_mc(self.tmp, "cut", "--resume", *narrower)
+            self.assertEqual(p.returncode, 2, p.stderr)
+            self.assertIn("holds %d finished row(s)" % outside, p.stderr)
+            self.assertIn("would delete", p.stderr)
+            self.assertEqual(read_text(csv_path), before)
 
     def test_unreachable_scheduler_is_one_line_and_exit_2(self):
         if not have_dask():

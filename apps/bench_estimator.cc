@@ -8,6 +8,7 @@
  * test.  Usage: rfseek-bench-estimator [windows]
  */
 
+#include "bench_args.h"
 #include <gnuradio/blocks/head.h>
 #include <gnuradio/blocks/vector_source.h>
 #include <gnuradio/top_block.h>
@@ -27,7 +28,14 @@ using clk = std::chrono::steady_clock;
 
 int main(int argc, char** argv)
 {
-    const int reps = argc > 1 ? std::atoi(argv[1]) : 20000;
+    const int reps = bench_count(
+        argc,
+        argv,
+        "windows",
+        20000,
+        100000000,
+        "Microseconds per window for each interpolator next to one FFTW execute, and "
+        "the doppler_estimator block's throughput.");
     const double fs = 1e5;
     const int n = 1000, nfft = 4096;
 

@@ -9,6 +9,7 @@
  *   Usage: rfseek-bench-loop [runs]
  */
 
+#include "bench_args.h"
 #include <gnuradio/top_block.h>
 #include <fftw3.h>
 #include <gr-rfseek/channel_source.h>
@@ -24,7 +25,14 @@ using clk = std::chrono::steady_clock;
 
 int main(int argc, char** argv)
 {
-    const int runs = argc > 1 ? std::atoi(argv[1]) : 3;
+    const int runs = bench_count(
+        argc,
+        argv,
+        "runs",
+        3,
+        100000,
+        "Cost of the closed loop on the reference scenario: the core simulation per "
+        "slot next to one FFTW execute, and the GNU Radio flowgraph against real time.");
     scenario base;
 
     auto* in = fftwf_alloc_complex(base.fft_len);

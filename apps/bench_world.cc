@@ -7,6 +7,7 @@
  * not a test.  Usage: rfseek-bench-world [slots]
  */
 
+#include "bench_args.h"
 #include <fftw3.h>
 #include <gr-rfseek/world.h>
 #include <chrono>
@@ -34,7 +35,14 @@ double us_per_call(int reps, F&& f)
 
 int main(int argc, char** argv)
 {
-    const int reps = argc > 1 ? std::atoi(argv[1]) : 20000;
+    const int reps = bench_count(
+        argc,
+        argv,
+        "slots",
+        20000,
+        100000000,
+        "Cost of synthesising one beacon slot (reference scenario) next to one FFTW "
+        "execute of size N_FFT, measured in the same run.");
     scenario sc;
     sc.seed = 1;
 

@@ -184,8 +184,9 @@ void scenario::validate() const
     require_nonneg("cfo_range_hz", cfo_range_hz);
     require_nonneg("cfo_drift_range_hz_per_s", cfo_drift_range_hz_per_s);
     require_nonneg("cfo_walk_hz_per_sqrt_s", cfo_walk_hz_per_sqrt_s);
-    require_nonneg("speed_mps", speed_mps);
-    require_range("speed_mps", speed_mps, 0.0, 1000.0);
+    // The UAV must move: a vehicle at rest hears no Doppler to steer by.
+    if (!(speed_mps > 0.0 && speed_mps <= 1000.0))
+        bad("speed_mps", speed_mps, "in (0, 1000] m/s (the UAV's airspeed)");
     const double nyquist = 0.5 * samp_rate_hz;
     const double fd = max_doppler_hz();
     if (cfo_range_hz + fd >= nyquist)

@@ -75,6 +75,7 @@ TEST(scenario, validate_names_the_bad_parameter)
         { "cfo_hz", "49990" },
         { "cfo_walk_hz_per_sqrt_s", "-1" },
         { "speed_mps", "-3" },
+        { "speed_mps", "0" },
         { "heading_noise_rad", "-0.1" },
         { "turn_rate_rad_per_s", "-1" },
         { "success_radius_m", "6000" },

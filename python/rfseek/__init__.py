@@ -48,6 +48,15 @@ def deg_or_none(x):
     return None if x is None else _math.radians(x)
 
 
+def arrival_is_self(mode):
+    """An "oracle" / "self" arrival setting (GRC's Arrival parameter, a --arrival option)
+    as a bool: True for "self"; ValueError for anything else."""
+    if mode not in ("oracle", "self"):
+        raise ValueError("arrival = %r: must be 'oracle' (the simulator ends the run at "
+                         "d_v) or 'self' (the vehicle decides its arrival)" % (mode,))
+    return mode == "self"
+
+
 def scenario_from(**fields):
     """A scenario with the given fields set; None values mean "drawn from the seed"."""
     sc = scenario()

@@ -315,6 +315,15 @@ const out = [];
             with self.assertRaises(ValueError) as cm:
                 rfseek.autopilot_link(**kw)
             self.assertIn(word, str(cm.exception))
+        # The simulated autopilot checks what it is given the same way.
+        for kw, word in (({"airspeed_mps": -1.0}, "airspeed_mps"),
+                         ({"airspeed_mps": float("nan")}, "airspeed_mps"),
+                         ({"ref_lat_deg": 100.0}, "ref_lat_deg"),
+                         ({"ref_lon_deg": 200.0}, "ref_lon_deg"),
+                         ({"time_scale": 0.5}, "time_scale")):
+            with self.assertRaises(ValueError) as cm:
+                rfseek.sim_autopilot(**kw)
+            self.assertIn(word, str(cm.exception))
         with self.assertRaises(OSError) as cm:
             rfseek.autopilot_link("serial:/dev/rfseek-no-such-device:57600")
         self.assertIn("/dev/rfseek-no-such-device", str(cm.exception))

@@ -202,6 +202,10 @@ class qa_doppler_estimator(gr_unittest.TestCase):
              "alignment"),
             (dict(samp_rate=FS, window_len=N, fft_len=NFFT, alignment="periodic",
                   period=10), "period"),
+            (dict(samp_rate=FS, window_len=N, fft_len=NFFT, alignment="periodic",
+                  period=-1), "period = -1: must be >= 0"),
+            (dict(samp_rate=FS, window_len=N, fft_len=NFFT, alignment="periodic",
+                  period=2 * N, offset=-1), "offset = -1: must be >= 0"),
         ]
         for kw, name in cases:
             with self.assertRaisesRegex(ValueError, name):

@@ -93,6 +93,12 @@ class qa_live(gr_unittest.TestCase):
         self.assertEqual(p.returncode, 2)
         self.assertIn("window_len", p.stderr)
         self.assertNotIn("Traceback", p.stderr)
+        # Radio settings the simulator would ignore are refused, naming them.
+        p = live("--source", "sim", "--fast", "--freq", "915e6", "--gain", "nan")
+        self.assertEqual(p.returncode, 2, p.stderr)
+        self.assertIn("--freq, --gain: not used with --source sim", p.stderr)
+        self.assertIn("carrier_hz", p.stderr)
+        self.assertNotIn("Traceback", p.stderr)
 
 
 if __name__ == "__main__":

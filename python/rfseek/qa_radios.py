@@ -289,6 +289,10 @@ class qa_radios(gr_unittest.TestCase):
             rfseek.rx_plan("hackrf", 2.4e9, out_rate=300e3)
         with self.assertRaisesRegex(ValueError, "lo_offset"):
             rfseek.rx_plan("rtlsdr", 915e6, lo_offset_hz=500e3)
+        # A gain that is not a number is refused before any device is looked for.
+        for gain in (float("nan"), float("inf"), "loud"):
+            with self.assertRaisesRegex(ValueError, "gain = .*RTL-SDR"):
+                rfseek.radio_source("rtlsdr", 915e6, gain)
         for family, what in (("rtlsdr", "osmosdr"), ("plutosdr", "SoapySDR")):
             with self.assertRaisesRegex(LookupError, "no %s device found" % what):
                 rfseek.radio_source(family, 915e6)

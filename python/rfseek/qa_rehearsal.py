@@ -93,6 +93,19 @@ class qa_rehearsal(gr_unittest.TestCase):
         self.assertEqual(p.returncode, 2, err)
         self.assertIn("--zmq", err)
 
+    def test_no_beacon_process_is_said_and_fails(self):
+        # Nobody serves the address: the receiver says so while it waits, and a run that
+        # measured nothing ends with status 1, not as a success.
+        addr = "tcp://127.0.0.1:%d" % free_port()
+        p = live("--source", "zmq", "--zmq", addr, "--radio", "rtlsdr", "--freq", "915e6",
+                 "--duration", "11")
+        out, err = p.communicate(timeout=120)
+        self.assertEqual(p.returncode, 1, err)
+        self.assertIn("no samples from %s after 10 s" % addr, err)
+        self.assertIn("0 measurements", err)
+        self.assertIn("nothing measured", err)
+        self.assertNotIn("Traceback", err)
+
 
 if __name__ == "__main__":
     gr_unittest.run(qa_rehearsal)

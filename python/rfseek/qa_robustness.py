@@ -154,18 +154,36 @@ SIM = [sys.executable, os.path.join(SOURCE, "apps", "rfseek-sim"), "--no-figures
 LIVE = [sys.executable, os.path.join(SOURCE, "apps", "rfseek-live")]
 
 # (area, input, answer, check)
+def resume_narrower(tc):
+    """A finished 2-run study resumed as a 1-run one is refused; its CSV stays whole."""
+    import tempfile
+    with tempfile.TemporaryDirectory() as tmp:
+        out = os.path.join(tmp, "r.json")
+        base = [MC, "--out", out, "--quiet", "--set", "initial_distance_m=300"]
+        tc.assertEqual(subprocess.run(base + ["--runs", "2"], capture_output=True,
+                                      timeout=120).returncode, 0)
+        with open(out[:-5] + ".csv") as f:
+            before = f.read()
+        program(base + ["--runs", "1", "--resume"], "would delete")(tc)
+        with open(out[:-5] + ".csv") as f:
+            tc.assertEqual(f.read(), before)
+
+
 ROWS = [
     # --- parameters
-    ("parameters", "`scenario(snr_db=nan)` / `inf`, then any block or `validate()`",
-     "ValueError `scenario.snr_db = nan: must be in [-100, 100]`",
-     raises(lambda: rfseek.scenario(snr_db=NAN).validate(), "snr_db")),
-    ("parameters", "`scenario(initial_distance_m=-5)`, `0`, `1e30`",
-     "ValueError naming the field, range [1, 1e7] m",
-     lambda tc: [raises(lambda: rfseek.scenario(initial_distance_m=v).validate(),
-                        "initial_distance_m")(tc) for v in (-5.0, 0.0, 1e30)]),
+    ("parameters", "`scenario(snr_db=nan)` / `inf`; `sc.snr_db = nan`, then any block or `validate()`",
+     "ValueError `scenario.snr_db = nan: must be in [-100, 100]` (keyword arguments are validated as the scenario is made)",
+     lambda tc: [raises(lambda: rfseek.scenario(snr_db=v), "snr_db")(tc) for v in (NAN, INF)]
+     + [raises(lambda: (lambda s: (setattr(s, "snr_db", NAN), s.validate()))(rfseek.scenario()),
+               "snr_db")(tc)]),
+    ("parameters", "`scenario(initial_distance_m=-5)`, `0`, `1e30`; `scenario(speed_mps=-1)`",
+     "ValueError naming the field, range [1, 1e7] m; speed_mps",
+     lambda tc: [raises(lambda: rfseek.scenario(initial_distance_m=v),
+                        "initial_distance_m")(tc) for v in (-5.0, 0.0, 1e30)]
+     + [raises(lambda: rfseek.scenario(speed_mps=-1.0), "speed_mps")(tc)]),
     ("parameters", "`scenario(fft_len=100)` (smaller than `window_len` 1000)",
      "ValueError `scenario.window_len = 1000: must be in [3, 100]`",
-     raises(lambda: rfseek.scenario(fft_len=100).validate(), "window_len")),
+     raises(lambda: rfseek.scenario(fft_len=100), "window_len")),
     ("parameters", "`scenario(seed=-1)`, `snr_db='loud'`, `num_scatterers=2.5`, `add_noise='yes'` (wrong types)",
      "ValueError naming the field and the type expected",
      lambda tc: [raises(lambda: rfseek.scenario(**{k: v}), k)(tc) for k, v in
@@ -209,8 +227,8 @@ ROWS = [
      + [raises(lambda k=k, v=v: rfseek.burst_acquirer(1e5, acquirer_config(**{k: v})), k)(tc)
         for k, v in (("hop", -1), ("margin", 5000), ("loop_alpha", 0.0),
                      ("loop_beta", 0.5))]),
-    ("parameters", "`rx_plan('usrp_x999')`, an RTL-SDR at 2 GHz, an N210 at 100 kS/s, an out_rate that does not divide the device rate, an LO offset beyond the band; `radio_source` gain out of range",
-     "ValueError naming family / freq / device_rate / out_rate / lo_offset (with the radio's range); the gain is clamped with a warning (`qa_radios`)",
+    ("parameters", "`rx_plan('usrp_x999')`, an RTL-SDR at 2 GHz, an N210 at 100 kS/s, an out_rate that does not divide the device rate, an LO offset beyond the band; `radio_source` gain out of range, or NaN",
+     "ValueError naming family / freq / device_rate / out_rate / lo_offset (with the radio's range); the gain is clamped with a warning, a NaN one refused (ValueError naming gain) (`qa_radios`)",
      qa("radios", "test_bad_settings_and_missing_devices")),
     ("parameters", "`radio_source` with no radio attached",
      "LookupError `no UHD / osmosdr / SoapySDR device found ...`; `rfseek-live` exits with status 3",
@@ -251,7 +269,7 @@ ROWS = [
     ("samples", "`rx_rate` tag: not a number, NaN, 0, or a rate the search band cannot fit",
      "logged, not followed; measuring goes on at the last good rate",
      qa("radios", "test_bad_rate_tags_are_not_followed")),
-    ("samples", "SigMF recordings: wrong datatype, no sample rate, mutated metadata and data",
+    ("samples", "SigMF recordings: wrong datatype, no sample rate, mutated metadata and data; `sigmf_recorder` with a NaN `center_freq` or an infinite `samp_rate`",
      "ValueError naming the field (scripts/fuzz_python.py: 0 other exceptions)",
      qa("sigmf", "test_bad_recording_is_refused")),
     # --- programs
@@ -281,6 +299,29 @@ ROWS = [
          (["--source", "uhd", "--device-rate", "50e3"], "device_rate"),
          (["--source", "sim", "--radio", "rtlsdr", "--duration", "1"], "carrier_hz"),
          (["--source", "zmq"], "--zmq"))]),
+    ("programs", "`rfseek-live --source sim --freq 915e6` / `--gain nan` / `--rate 0` (radio settings the simulator would ignore)",
+     "one line naming them and saying where the world's carrier and rate are set, exit 2",
+     lambda tc: [program(LIVE + ["--source", "sim", "--fast"] + a, w)(tc) for a, w in (
+         (["--freq", "915e6"], "--freq: not used with --source sim"),
+         (["--gain", "nan"], "--gain: not used"),
+         (["--rate", "0"], "--rate: not used"))]),
+    ("programs", "`rfseek-live --source zmq --zmq ADDR` with no beacon process serving ADDR",
+     "says so every 10 s while it waits; a run that measured nothing ends with `nothing measured`, exit 1",
+     qa("rehearsal", "test_no_beacon_process_is_said_and_fails")),
+    ("programs", "`rfseek-montecarlo --resume` with fewer `--runs` or without a strategy the CSV holds",
+     "one line naming how many finished rows it would delete, exit 2, the CSV untouched (`qa_study_backends`)",
+     lambda tc: resume_narrower(tc)),
+    ("programs", "`rfseek-bench-world abc`, `rfseek-bench-estimator -5`, `rfseek-bench-loop 0`",
+     "one line naming the count and its range, exit 2 (`--help`: the usage, exit 0)",
+     lambda tc: [program([os.path.join(BUILD, "apps", b), v], w)(tc) for b, v, w in (
+         ("rfseek-bench-world", "abc", "slots = 'abc'"),
+         ("rfseek-bench-estimator", "-5", "windows = '-5'"),
+         ("rfseek-bench-loop", "0", "runs = '0'"))]),
+    ("programs", "`rfseek-soak --strategy nosuch`, `rfseek-bench-acquire --seeds 0`",
+     "one line naming the option, exit 2",
+     lambda tc: [program([sys.executable, os.path.join(SOURCE, "apps", a)] + args, w)(tc)
+                 for a, args, w in (("rfseek-soak", ["--strategy", "nosuch"], "--strategy"),
+                                    ("rfseek-bench-acquire", ["--seeds", "0"], "--seeds"))]),
 ]
 
 

@@ -51,6 +51,10 @@ class qa_sigmf(gr_unittest.TestCase):
         except ImportError:
             self.skipTest("no Qt or matplotlib: seek_view is optional")
         self.assertIs(rfseek.seek_view, sys.modules["gnuradio.rfseek.seek_view"].seek_view)
+        # A refresh interval Qt cannot run is refused before any widget is made.
+        for bad in (0, -5, float("nan"), "fast"):
+            with self.assertRaisesRegex(ValueError, "update_ms"):
+                rfseek.seek_view("view", bad)
 
     def test_committed_recording_is_valid_sigmf(self):
         meta = json.load(open(RECORDING + ".sigmf-meta"))
@@ -120,6 +124,13 @@ class qa_sigmf(gr_unittest.TestCase):
         open(base + ".sigmf-data", "wb").close()
         with self.assertRaisesRegex(ValueError, "cf32_le"):
             sigmf.load(base)
+        # A recorder that would write a frequency strict JSON cannot hold is refused.
+        for rate, freq, word in ((1e5, float("nan"), "center_freq"),
+                                 (1e5, "2.4 GHz", "center_freq"),
+                                 (float("inf"), 2.4e9, "samp_rate"),
+                                 (0.0, 2.4e9, "samp_rate")):
+            with self.assertRaisesRegex(ValueError, word):
+                sigmf.sigmf_recorder(base + "_rec", rate, freq)
 
 
 if __name__ == "__main__":

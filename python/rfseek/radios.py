@@ -324,6 +324,15 @@ class radio_source(gr.hier_block2):
         lo, hi = self.radio.gain_db
         if gain is None:
             return self.radio.gain_default
+        try:
+            value = float(gain)
+        except (TypeError, ValueError):
+            value = math.nan
+        if not math.isfinite(value):
+            raise ValueError("radio_source: gain = %r: must be a number of dB (the %s's "
+                             "%.1f-%.1f dB; outside it is clamped) or None for its "
+                             "default" % (gain, self.radio.label, lo, hi))
+        gain = value
         if not lo <= gain <= hi:
             gr.log.warn("radio_source: gain %.1f dB outside the %s's %.1f-%.1f dB: "
                         "clamped" % (gain, self.radio.label, lo, hi))

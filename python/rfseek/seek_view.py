@@ -6,6 +6,7 @@
 scatterers, path coloured by stage) from channel_source's "state" truth, and the frequency
 measurements against the true Doppler + CFO from doppler_estimator's "meas"."""
 
+import numbers
 import threading
 
 import numpy as np
@@ -21,6 +22,9 @@ class seek_view(gr.basic_block, FigureCanvas):
     (doppler_estimator), telemetry (seeking_controller, optional: stage colouring)."""
 
     def __init__(self, title="gr-rfseek", update_ms=200, parent=None):
+        if not (isinstance(update_ms, numbers.Real) and 10 <= update_ms <= 60000):
+            raise ValueError("seek_view: update_ms = %r: must be in [10, 60000] ms"
+                             % (update_ms,))
         gr.basic_block.__init__(self, name="seek_view", in_sig=None, out_sig=None)
         self.fig = Figure(figsize=(10, 4.5), dpi=90)
         FigureCanvas.__init__(self, self.fig)

@@ -19,6 +19,7 @@ core:sample_start and core:label:
 
 import json
 import math
+import numbers
 import os
 
 import numpy as np
@@ -36,8 +37,12 @@ class sigmf_recorder(gr.sync_block):
                  estimator=None):
         gr.sync_block.__init__(self, name="sigmf_recorder", in_sig=[np.complex64],
                                out_sig=None)
-        if not samp_rate > 0:
-            raise ValueError("sigmf_recorder: samp_rate = %r: must be > 0" % samp_rate)
+        if not isinstance(samp_rate, numbers.Real) or not 0 < samp_rate < math.inf:
+            raise ValueError("sigmf_recorder: samp_rate = %r: must be > 0 and finite"
+                             % (samp_rate,))
+        if not isinstance(center_freq, numbers.Real) or not math.isfinite(center_freq):
+            raise ValueError("sigmf_recorder: center_freq = %r: must be a finite "
+                             "frequency in Hz (SigMF's core:frequency)" % (center_freq,))
         self.base = base
         self.samp_rate = float(samp_rate)
         self.center_freq = float(center_freq)

@@ -24,6 +24,7 @@ ignore commands (no acks).
 """
 
 import math
+import numbers
 import select
 import threading
 import time
@@ -56,6 +57,13 @@ class sim_autopilot(gr.basic_block):
         if not (isinstance(time_scale, (int, float)) and 1.0 <= time_scale <= 100.0):
             raise ValueError("sim_autopilot: time_scale = %r: must be in [1, 100]"
                              % (time_scale,))
+        for name, value, lo, hi, what in (
+                ("airspeed_mps", airspeed_mps, 0.0, 100.0, "[0, 100] m/s"),
+                ("ref_lat_deg", ref_lat_deg, -89.0, 89.0,
+                 "[-89, 89] deg (the local frame's origin; not at a pole)"),
+                ("ref_lon_deg", ref_lon_deg, -180.0, 180.0, "[-180, 180] deg")):
+            if not (isinstance(value, numbers.Real) and lo <= value <= hi):
+                raise ValueError("sim_autopilot: %s = %r: must be in %s" % (name, value, what))
         self.time_scale = float(time_scale)
         self.family = family
         self.mode_name = mode or _core.autopilot_default_mode(family)

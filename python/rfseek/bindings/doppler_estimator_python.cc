@@ -9,8 +9,52 @@
 #include <gr-rfseek/doppler_estimator.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
+#include <string>
+#include <utility>
 
 namespace py = pybind11;
+
+namespace {
+
+// Sample counts are unsigned in C++: a negative one from Python is a bad value
+// (ValueError naming it), not a type pybind11 cannot convert.
+std::shared_ptr<gr::rfseek::doppler_estimator>
+make_checked(double samp_rate,
+             int window_len,
+             int fft_len,
+             const std::string& window,
+             const std::string& interpolator,
+             const std::string& alignment,
+             const std::string& tag_key,
+             long long period,
+             long long offset,
+             double min_freq,
+             double max_freq,
+             double threshold_db,
+             double pfa)
+{
+    for (const auto& [name, v] :
+         { std::pair<const char*, long long>{ "period", period },
+           std::pair<const char*, long long>{ "offset", offset } })
+        if (v < 0)
+            throw py::value_error(std::string("doppler_estimator: ") + name + " = " +
+                                  std::to_string(v) + ": must be >= 0 (samples)");
+    return gr::rfseek::doppler_estimator::make(samp_rate,
+                                               window_len,
+                                               fft_len,
+                                               window,
+                                               interpolator,
+                                               alignment,
+                                               tag_key,
+                                               static_cast<std::uint64_t>(period),
+                                               static_cast<std::uint64_t>(offset),
+                                               min_freq,
+                                               max_freq,
+                                               threshold_db,
+                                               pfa);
+}
+
+} // namespace
 
 void bind_doppler_estimator(py::module& m)
 {
@@ -23,7 +67,7 @@ void bind_doppler_estimator(py::module& m)
         m,
         "doppler_estimator",
         "Windowed, zero-padded FFT frequency estimator: one 'meas' message per window.")
-        .def(py::init(&doppler_estimator::make),
+        .def(py::init(&make_checked),
              py::arg("samp_rate"),
              py::arg("window_len"),
              py::arg("fft_len"),

@@ -100,10 +100,15 @@ void bind_scenario(py::module& m)
         "scenario (paper Table I + docs/design.md). Fields set to None are "
         "drawn from the seed. scenario(**fields) sets fields by name.");
     c.def(py::init([](const py::kwargs& kw) {
-              return rfseek_from_kwargs<scenario>(kw, "scenario");
+              scenario v = rfseek_from_kwargs<scenario>(kw, "scenario");
+              if (!kw.empty())
+                  v.validate(); // the fields given, together: ValueError naming one
+              return v;
           }),
           "A scenario with the reference defaults; keyword arguments set fields by name "
-          "(ValueError for an unknown one).");
+          "(ValueError for an unknown one, or for a value out of range: the fields given "
+          "are "
+          "validated together).");
 #define RW(NAME, DOC) c.def_readwrite(#NAME, &scenario::NAME, DOC)
     RW(initial_distance_m, "d: UAV to emitter at start (m)");
     RW(start_angle_rad, "alpha: UAV polar angle around the emitter (None: from seed)");

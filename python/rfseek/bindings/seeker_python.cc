@@ -83,10 +83,14 @@ void bind_seeker_config(py::module& m)
                                 "Strategy and constants of the seeker. "
                                 "seeker_config(**fields) sets fields by name.");
     c.def(py::init([](const py::kwargs& kw) {
-              return rfseek_from_kwargs<seeker_config>(kw, "seeker_config");
+              seeker_config v = rfseek_from_kwargs<seeker_config>(kw, "seeker_config");
+              if (!kw.empty())
+                  v.validate(); // the fields given, together: ValueError naming one
+              return v;
           }),
           "A configuration with the paper's constants; keyword arguments set fields by "
-          "name.");
+          "name (ValueError for an unknown one, or for a value out of range: the fields "
+          "given are validated together).");
 #define RW(NAME, DOC) c.def_readwrite(#NAME, &seeker_config::NAME, DOC)
     RW(strategy,
        "'paper', 'paper_no_circle', 'rss_baseline' or 'adaptive' (ours, not the "

@@ -86,6 +86,10 @@ class rehearsal_source(gr.hier_block2):
     def stale_count(self):
         return self.world.stale_count()
 
+    def slot(self):
+        """The simulated world's current slot."""
+        return self.world.slot()
+
 
 def zmq_ports(address):
     """tcp://HOST:PORT -> the three addresses: samples (PORT), heading reports (PORT+1),

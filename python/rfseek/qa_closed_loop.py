@@ -275,12 +275,19 @@ class qa_closed_loop(gr_unittest.TestCase):
         self.assertEqual(ctl.waiting_count(), 0)
 
     def test_bad_configuration_raises_value_error(self):
+        # Keyword construction validates what it makes...
         with self.assertRaisesRegex(ValueError, "seeker_config.strategy"):
-            rfseek.seeking_controller(rfseek.seeker_config(strategy="gradient"))
+            rfseek.seeker_config(strategy="gradient")
         with self.assertRaisesRegex(ValueError, "seeker_config.m_slots"):
-            rfseek.seeking_controller(rfseek.seeker_config(m_slots=0))
+            rfseek.seeker_config(m_slots=0)
         with self.assertRaises(TypeError):
             rfseek.seeker_config(delta=0.1)
+        # ... and the controller validates a configuration set field by field.
+        for key, value in (("strategy", "gradient"), ("m_slots", 0)):
+            cfg = rfseek.seeker_config()
+            setattr(cfg, key, value)
+            with self.assertRaisesRegex(ValueError, "seeker_config." + key):
+                rfseek.seeking_controller(cfg)
 
 
 if __name__ == "__main__":

@@ -82,6 +82,15 @@ class qa_rehearsal(gr_unittest.TestCase):
         self.assertIsNotNone(m, r_err)
         self.assertGreater(int(m.group(1)), 100)
 
+    def test_radio_flags_the_server_ignores_are_refused(self):
+        addr = "tcp://127.0.0.1:%d" % free_port()
+        p = live("--source", "sim", "--radio", "rtlsdr", "--zmq-serve", addr, "--gain", "30",
+                 "--freq", "2.4e9", "--duration", "1", *WORLD)
+        out, err = p.communicate(timeout=60)
+        self.assertEqual(p.returncode, 2, err)
+        self.assertIn("--freq, --gain: not used by --zmq-serve", err)
+        self.assertNotIn("Traceback", err)
+
     def test_bad_rehearsal_settings_are_clean_errors(self):
         p = live("--source", "sim", "--radio", "rtlsdr", "--duration", "1")
         out, err = p.communicate(timeout=60)
@@ -101,7 +110,7 @@ class qa_rehearsal(gr_unittest.TestCase):
                  "--duration", "11")
         out, err = p.communicate(timeout=120)
         self.assertEqual(p.returncode, 1, err)
-        self.assertIn("no samples from %s after 10 s" % addr, err)
+        self.assertIn("nothing measured from %s after 10 s" % addr, err)
         self.assertIn("0 measurements", err)
         self.assertIn("nothing measured", err)
         self.assertNotIn("Traceback", err)

@@ -235,6 +235,13 @@ ROWS = [
      qa("radios", "test_bad_settings_and_missing_devices")),
     ("parameters", "`vehicle_bridge(peer_port=70000)`, `nav_timeout=0`, `max_datagram=10`, `max_rate_hz=nan`",
      "ValueError naming the parameter and its range", qa("vehicle_bridge", "test_bad_parameters")),
+    ("parameters", "`sim_autopilot(airspeed_mps=-1)`, `ref_lat_deg=100`, `time_scale=0.5`; `seek_view(update_ms=0)`",
+     "ValueError naming the parameter and its range, before any socket or widget is made",
+     lambda tc: [raises(lambda k=k, v=v: rfseek.sim_autopilot(**{k: v}), k)(tc)
+                 for k, v in (("airspeed_mps", -1.0), ("ref_lat_deg", 100.0),
+                              ("time_scale", 0.5))]
+     + ([raises(lambda: rfseek.seek_view("view", 0), "update_ms")(tc)]
+        if hasattr(rfseek, "seek_view") else [])),
     # --- messages
     ("messages", "`channel_source` cmd: not a dict, no numeric heading, NaN heading, non-integer slot",
      "logged once per kind, counted (`malformed_count()`), dropped; the UAV flies on",
@@ -299,14 +306,16 @@ ROWS = [
          (["--source", "uhd", "--device-rate", "50e3"], "device_rate"),
          (["--source", "sim", "--radio", "rtlsdr", "--duration", "1"], "carrier_hz"),
          (["--source", "zmq"], "--zmq"))]),
-    ("programs", "`rfseek-live --source sim --freq 915e6` / `--gain nan` / `--rate 0` (radio settings the simulator would ignore)",
+    ("programs", "`rfseek-live --source sim --freq 915e6` / `--gain nan` / `--rate 0`; `--lo-offset` without `--radio`; radio flags to `--zmq-serve` (settings that would be ignored)",
      "one line naming them and saying where the world's carrier and rate are set, exit 2",
      lambda tc: [program(LIVE + ["--source", "sim", "--fast"] + a, w)(tc) for a, w in (
          (["--freq", "915e6"], "--freq: not used with --source sim"),
          (["--gain", "nan"], "--gain: not used"),
-         (["--rate", "0"], "--rate: not used"))]),
+         (["--rate", "0"], "--rate: not used"),
+         (["--lo-offset", "1000"], "need --radio FAMILY"))]
+     + [qa("rehearsal", "test_radio_flags_the_server_ignores_are_refused")(tc)]),
     ("programs", "`rfseek-live --source zmq --zmq ADDR` with no beacon process serving ADDR",
-     "says so every 10 s while it waits; a run that measured nothing ends with `nothing measured`, exit 1",
+     "says so every 10 s while nothing is measured; a run that measured nothing ends with `nothing measured`, exit 1",
      qa("rehearsal", "test_no_beacon_process_is_said_and_fails")),
     ("programs", "`rfseek-montecarlo --resume` with fewer `--runs` or without a strategy the CSV holds",
      "one line naming how many finished rows it would delete, exit 2, the CSV untouched (`qa_study_backends`)",

@@ -102,13 +102,15 @@ void bind_scenario(py::module& m)
     c.def(py::init([](const py::kwargs& kw) {
               scenario v = rfseek_from_kwargs<scenario>(kw, "scenario");
               if (!kw.empty())
-                  v.validate(); // the fields given, together: ValueError naming one
+                  v.validate(); // the object made (defaults elsewhere): ValueError naming
+                                // a field
               return v;
           }),
           "A scenario with the reference defaults; keyword arguments set fields by name "
-          "(ValueError for an unknown one, or for a value out of range: the fields given "
-          "are "
-          "validated together).");
+          "(TypeError for an unknown one). The scenario made is then validated, the "
+          "other fields at their defaults: ValueError naming a field out of range. To "
+          "build one in steps, make scenario() and set attributes; blocks and "
+          "validate() check it.");
 #define RW(NAME, DOC) c.def_readwrite(#NAME, &scenario::NAME, DOC)
     RW(initial_distance_m, "d: UAV to emitter at start (m)");
     RW(start_angle_rad, "alpha: UAV polar angle around the emitter (None: from seed)");

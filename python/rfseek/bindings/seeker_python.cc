@@ -85,12 +85,14 @@ void bind_seeker_config(py::module& m)
     c.def(py::init([](const py::kwargs& kw) {
               seeker_config v = rfseek_from_kwargs<seeker_config>(kw, "seeker_config");
               if (!kw.empty())
-                  v.validate(); // the fields given, together: ValueError naming one
+                  v.validate(); // the object made (defaults elsewhere): ValueError naming
+                                // a field
               return v;
           }),
           "A configuration with the paper's constants; keyword arguments set fields by "
-          "name (ValueError for an unknown one, or for a value out of range: the fields "
-          "given are validated together).");
+          "name (TypeError for an unknown one). The configuration made is then "
+          "validated, the other fields at their defaults: ValueError naming a field out "
+          "of range. To build one in steps, make seeker_config() and set attributes.");
 #define RW(NAME, DOC) c.def_readwrite(#NAME, &seeker_config::NAME, DOC)
     RW(strategy,
        "'paper', 'paper_no_circle', 'rss_baseline' or 'adaptive' (ours, not the "

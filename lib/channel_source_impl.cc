@@ -8,10 +8,11 @@
 
 #include "channel_source_impl.h"
 #include <gnuradio/io_signature.h>
+#include <boost/date_time/posix_time/posix_time_types.hpp>
+#include <boost/thread/thread.hpp>
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
-#include <thread>
 
 namespace gr {
 namespace rfseek {
@@ -77,7 +78,12 @@ channel_source_impl::channel_source_impl(const scenario& sc,
 
 bool channel_source_impl::start()
 {
-    d_t0 = std::chrono::steady_clock::now();
+    {
+        // The world's present time is due now: a flowgraph started again after a stop
+        // goes on at once, not after as long as it had already flown.
+        gr::thread::scoped_lock lock(d_setlock);
+        reanchor();
+    }
     d_logger->debug("start: mode {}, {}, {}, seed {}",
                     mode(),
                     d_lockstep ? "lockstep" : "free-running",
@@ -274,18 +280,23 @@ int channel_source_impl::work(int noutput_items,
             d_next_ready = true;
         }
         if (!d_started || d_next_ready) {
-            if (d_realtime) {
-                const auto due =
+            if (produced > 0 && !slot_due())
+                break; // hand over what is ready; the next call waits
+            // In short naps, each an interruption point (stop() returns promptly) after
+            // which the pace is read again (set_speedup, set_realtime apply at once).
+            while (!slot_due()) {
+                const auto left =
                     d_t0 +
-                    std::chrono::duration_cast<std::chrono::steady_clock::duration>(
-                        std::chrono::duration<double>(d_world.time_s() / d_speedup));
-                if (std::chrono::steady_clock::now() < due) {
-                    if (produced > 0)
-                        break;
-                    lock.unlock();
-                    std::this_thread::sleep_until(due);
-                    lock.lock();
-                }
+                    std::chrono::duration_cast<std::chrono::microseconds>(
+                        std::chrono::duration<double>(d_world.time_s() / d_speedup)) -
+                    std::chrono::steady_clock::now();
+                const auto nap = std::clamp<long long>(
+                    std::chrono::duration_cast<std::chrono::microseconds>(left).count(),
+                    0,
+                    MAX_NAP_US);
+                lock.unlock();
+                boost::this_thread::sleep(boost::posix_time::microseconds(nap));
+                lock.lock();
             }
             d_started = true;
             d_next_ready = false;
@@ -387,6 +398,15 @@ void channel_source_impl::set_speedup(double speedup)
     gr::thread::scoped_lock lock(d_setlock);
     d_speedup = check_speedup(speedup);
     reanchor(); // the pace changes from now on, without a jump
+}
+
+bool channel_source_impl::slot_due() const
+{
+    if (!d_realtime)
+        return true;
+    return std::chrono::steady_clock::now() >=
+           d_t0 + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                      std::chrono::duration<double>(d_world.time_s() / d_speedup));
 }
 
 void channel_source_impl::reanchor()

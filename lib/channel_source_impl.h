@@ -56,7 +56,9 @@ private:
     void drop(const std::string& kind, const pmt::pmt_t& msg);
     void begin_slot(std::uint64_t offset);
     void publish_state();
-    void reanchor(); // d_t0 such that the world's time is due now
+    void reanchor();       // d_t0 such that the world's time is due now
+    bool slot_due() const; // not paced, or the world's time has come (d_setlock held)
+    static constexpr long long MAX_NAP_US = 20000; // longest pacing sleep (20 ms)
 
     world d_world;
     const bool d_continuous;

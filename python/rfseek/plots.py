@@ -258,30 +258,42 @@ def sweep_metric(result, metric="auto"):
 
 
 def sweep_plot(result, path=None, metric="auto"):
-    """Ratio (mean, p90) and success rate versus the swept parameter, per strategy. In
+    """Ratio (mean, p90) and success rate versus the swept parameter, per strategy; one
+    column of panels per preset when the study swept several (--preset A,B --sweep). In
     wind (metric "auto") the ratio is the straight-line ratio (sweep_metric)."""
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
     key, label = sweep_metric(result, metric)
     sw = result["sweep"]
-    xs = [float(v) for v in sw["values"]]
-    fig, (a1, a2) = plt.subplots(2, 1, figsize=(7, 6), sharex=True)
-    for name in result["strategies"]:
-        mean = [e[name]["mean_" + key] for e in sw["summary"]]
-        p90 = [e[name]["p90_" + key] for e in sw["summary"]]
-        ok = [100 * e[name]["success_rate"] for e in sw["summary"]]
-        line, = a1.plot(xs, mean, "o-", label="%s mean" % name)
-        a1.plot(xs, p90, "s--", color=line.get_color(), alpha=0.6, label="%s p90" % name)
-        a2.plot(xs, ok, "o-", color=line.get_color(), label=name)
-    a1.set_ylabel(label)
-    a1.grid(alpha=0.3)
-    a1.legend(fontsize=8)
-    a1.set_title("sweep of %s, %d runs per point" % (sw["key"], result["runs"]), fontsize=10)
-    a2.set_ylabel("success (%)")
-    a2.set_xlabel(sw["key"])
-    a2.grid(alpha=0.3)
-    a2.legend(fontsize=8)
+    presets = []
+    for e in sw["summary"]:
+        if e.get("preset") not in presets:
+            presets.append(e.get("preset"))
+    fig, axes = plt.subplots(2, len(presets), figsize=(7 * len(presets), 6), sharex=True,
+                             squeeze=False)
+    for col, preset in enumerate(presets):
+        entries = [e for e in sw["summary"] if e.get("preset") == preset]
+        xs = [float(e["value"]) for e in entries]
+        a1, a2 = axes[0][col], axes[1][col]
+        for name in result["strategies"]:
+            mean = [e[name]["mean_" + key] for e in entries]
+            p90 = [e[name]["p90_" + key] for e in entries]
+            ok = [100 * e[name]["success_rate"] for e in entries]
+            line, = a1.plot(xs, mean, "o-", label="%s mean" % name)
+            a1.plot(xs, p90, "s--", color=line.get_color(), alpha=0.6,
+                    label="%s p90" % name)
+            a2.plot(xs, ok, "o-", color=line.get_color(), label=name)
+        a1.set_ylabel(label)
+        a1.grid(alpha=0.3)
+        a1.legend(fontsize=8)
+        a1.set_title("%ssweep of %s, %d runs per point" % (
+            "%s: " % preset if len(presets) > 1 else "", sw["key"], result["runs"]),
+            fontsize=10)
+        a2.set_ylabel("success (%)")
+        a2.set_xlabel(sw["key"])
+        a2.grid(alpha=0.3)
+        a2.legend(fontsize=8)
     fig.tight_layout()
     if path:
         fig.savefig(path, dpi=110)

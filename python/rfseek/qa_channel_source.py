@@ -7,6 +7,8 @@
 malformed commands, termination at d_v, and parameter errors as ValueError."""
 
 import math
+import threading
+import time
 
 import numpy as np
 import pmt
@@ -165,6 +167,42 @@ class qa_channel_source(gr_unittest.TestCase):
                  for i in range(states.num_messages())]
         self.assertEqual(slots, list(range(11)))
         self.assertEqual(len(snk.data()), 10 * sc.slot_samples)
+
+    def test_paced_source_goes_on_at_once_after_a_restart(self):
+        # Paced at 2 x real time (a slot every 25 ms). Started again after 3 s, the world's
+        # present slot is due at once, so 1.5 s brings about 60 slots. Before, every slot
+        # waited as long again as the flight had run (3 s) and none came; 20 is the
+        # least accepted, a wide margin for a loaded machine.
+        src = rfseek.channel_source(scenario(initial_distance_m=5000.0), mode="burst",
+                                    lockstep=False, realtime=True, speedup=2.0)
+        tb = gr.top_block()
+        tb.connect(src, blocks.null_sink(gr.sizeof_gr_complex))
+        tb.start()
+        time.sleep(3.0)
+        tb.stop()
+        tb.wait()
+        first = src.slot()
+        self.assertGreater(first, 20)
+        tb.start()
+        time.sleep(1.5)
+        tb.stop()
+        tb.wait()
+        self.assertGreaterEqual(src.slot() - first, 20)
+
+    def test_stop_does_not_wait_for_a_slow_pace(self):
+        # At 0.001 x real time the next slot is 50 s away: stop() must interrupt the wait
+        # (it used to sleep it out). Checked from another thread with a generous limit.
+        src = rfseek.channel_source(scenario(), mode="continuous", lockstep=False,
+                                    realtime=True, speedup=0.001)
+        tb = gr.top_block()
+        tb.connect(src, blocks.null_sink(gr.sizeof_gr_complex))
+        tb.start()
+        time.sleep(0.2)
+        done = threading.Event()
+        stopper = threading.Thread(target=lambda: (tb.stop(), tb.wait(), done.set()),
+                                   daemon=True)
+        stopper.start()
+        self.assertTrue(done.wait(20.0), "stop() waited for the 50 s slot")
 
     def test_bad_parameters_raise_value_error(self):
         with self.assertRaisesRegex(ValueError, "scenario.snr_db"):

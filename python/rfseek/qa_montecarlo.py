@@ -248,6 +248,28 @@ class qa_montecarlo(gr_unittest.TestCase):
                               capture_output=True, text=True)
         self.assertEqual(plot.returncode, 0, plot.stderr)
 
+    def test_sweep_over_several_presets_plots_a_column_each(self):
+        # --preset A,B --sweep: each preset's column shows its own points (the figure
+        # once mixed them and failed on mismatched lengths).
+        from gnuradio.rfseek import plots
+        p, out = run_mc(self.tmp, "psw", "--runs", "1", "--strategy", "paper",
+                        "--preset", "reference,drift10", "--sweep", "snr_db=-5,5", *SHORT)
+        self.assertEqual(p.returncode, 0, p.stderr)
+        res = json.load(open(out))
+        fig = plots.sweep_plot(res)
+        top = [a for a in fig.axes if a.get_title()]
+        self.assertEqual([a.get_title().split(":")[0] for a in top], ["reference", "drift10"])
+        for a, preset in zip(top, ("reference", "drift10")):
+            want = [e["paper"]["mean_ratio"] for e in res["sweep"]["summary"]
+                    if e["preset"] == preset]
+            self.assertEqual(list(a.get_lines()[0].get_ydata()), want)
+            self.assertEqual(list(a.get_lines()[0].get_xdata()), [-5.0, 5.0])
+        plot = subprocess.run([sys.executable, os.path.join(SOURCE, "apps",
+                                                            "rfseek-plot-montecarlo"), out,
+                               "--table"], capture_output=True, text=True)
+        self.assertEqual(plot.returncode, 0, plot.stderr)
+        self.assertIn("| drift10: snr_db", plot.stdout)
+
     def test_wind_sweep_uses_the_straight_line_ratio(self):
         # In calm air the straight-line ratio is the plain ratio; in wind the sweep's
         # figure and table use it (the air distance of the straight ground line is not

@@ -326,6 +326,10 @@ ROWS = [
          ("rfseek-bench-world", "abc", "slots = 'abc'"),
          ("rfseek-bench-estimator", "-5", "windows = '-5'"),
          ("rfseek-bench-loop", "0", "runs = '0'"))]),
+    ("programs", "`rfseek-plot-montecarlo R.json --column straight_ratio` without `--against`",
+     "one line saying --column needs --against, exit 2",
+     program([sys.executable, os.path.join(SOURCE, "apps", "rfseek-plot-montecarlo"),
+              "r.json", "--column", "straight_ratio"], "--against")),
     ("programs", "`rfseek-soak --strategy nosuch`, `rfseek-bench-acquire --seeds 0`",
      "one line naming the option, exit 2",
      lambda tc: [program([sys.executable, os.path.join(SOURCE, "apps", a)] + args, w)(tc)

@@ -57,6 +57,12 @@ class qa_sigmf(gr_unittest.TestCase):
                 rfseek.seek_view("view", bad)
 
     def test_committed_recording_is_valid_sigmf(self):
+        # Named by its base or by either file, it is the same recording.
+        data, m = sigmf.load(RECORDING)
+        for name in (RECORDING + ".sigmf-meta", RECORDING + ".sigmf-data"):
+            d2, m2 = sigmf.load(name)
+            self.assertEqual(m2, m)
+            self.assertTrue(np.array_equal(d2, data))
         meta = json.load(open(RECORDING + ".sigmf-meta"))
         g = meta["global"]
         self.assertEqual(g["core:datatype"], "cf32_le")

@@ -123,9 +123,13 @@ def _number(where, v, lo, hi):
 
 
 def load(base):
-    """(samples as complex64, metadata dict) of BASE.sigmf-{data,meta}; ValueError naming
-    the field if the recording is not one this module can replay (a recording comes from
-    outside: every field used is checked, python/rfseek/fuzz_python.py tries the rest)."""
+    """(samples as complex64, metadata dict) of BASE.sigmf-{data,meta}; BASE may also be
+    either file's path. ValueError naming the field if the recording is not one this
+    module can replay (a recording comes from outside: every field used is checked,
+    python/rfseek/fuzz_python.py tries the rest)."""
+    for ext in (".sigmf-meta", ".sigmf-data"):
+        if base.endswith(ext):
+            base = base[:-len(ext)]
     try:
         with open(base + ".sigmf-meta", "rb") as f:
             meta = json.loads(f.read().decode("utf-8"))

@@ -268,9 +268,15 @@ int channel_source_impl::work(int noutput_items,
             d_world.advance(d_cmd_heading);
             if (d_world.finished()) {
                 publish_state();
+                // Under self arrival, arrived() only says "within d_v at this slot":
+                // the run ends at the controller's done (ended) or at the cap.
+                const bool oracle_arrival =
+                    d_world.arrived() && !d_world.config().self_arrival;
                 d_logger->info("{} at slot {} after {:.1f} m flown, {:.1f} m from the "
                                "emitter",
-                               d_world.arrived() ? "arrived" : "flight cap reached",
+                               d_world.ended()  ? "mission done (self arrival)"
+                               : oracle_arrival ? "arrived"
+                                                : "flight cap reached",
                                d_world.slot(),
                                d_world.distance_flown_m(),
                                d_world.distance_m());

@@ -326,9 +326,13 @@ void tone_estimator::set_band(double min_freq_hz, double max_freq_hz)
     const long kmin = static_cast<long>(std::ceil(min_freq_hz * d_nfft / d_fs));
     const long kmax = static_cast<long>(std::floor(max_freq_hz * d_nfft / d_fs));
     if (kmax - kmin < 2)
-        throw std::invalid_argument("tone_estimator: search band [min_freq, max_freq] "
-                                    "must span at least 3 FFT bins (" +
-                                    std::to_string(3.0 * d_fs / d_nfft) + " Hz)");
+        throw std::invalid_argument(
+            "tone_estimator: search band [min_freq, max_freq] = [" +
+            std::to_string(min_freq_hz) + ", " + std::to_string(max_freq_hz) +
+            "] Hz: must hold at least 3 FFT bin centres, which are samp_rate / fft_len "
+            "= " +
+            std::to_string(d_fs / d_nfft) +
+            " Hz apart (a band 2 bins wide holds 3 when it starts on one)");
     d_impl->banded = true;
     d_impl->kmin = kmin;
     d_impl->kmax = std::min(kmax, kmin + d_nfft - 1);

@@ -93,6 +93,20 @@ class qa_live(gr_unittest.TestCase):
         self.assertEqual(p.returncode, 2)
         self.assertIn("window_len", p.stderr)
         self.assertNotIn("Traceback", p.stderr)
+        # --set takes seeker constants with any source (scenario fields only with a
+        # simulated world) and refuses what it cannot place.
+        rec = os.path.join(os.environ.get("RFSEEK_SOURCE_DIR", "."), "examples", "data",
+                           "sim_beacons")
+        p = live("--source", "file", "--file", rec, "--set", "locate_max_orbits=5",
+                 "--set", "adaptive_gain=0.6", "--strategy", "adaptive")
+        self.assertEqual(p.returncode, 0, p.stderr)
+        self.assertIn("seeker constants set: locate_max_orbits=5, adaptive_gain=0.6",
+                      p.stderr)
+        for bad, word in (("bogus=3", "--set bogus: unknown"),
+                          ("snr_db=3", "--set snr_db: a field of the simulated world")):
+            p = live("--source", "file", "--file", rec, "--set", bad)
+            self.assertEqual(p.returncode, 2, p.stderr)
+            self.assertIn(word, p.stderr)
         # Radio settings the simulator would ignore are refused, naming them.
         p = live("--source", "sim", "--fast", "--freq", "915e6", "--gain", "nan")
         self.assertEqual(p.returncode, 2, p.stderr)

@@ -67,6 +67,15 @@ class qa_vehicle_bridge(gr_unittest.TestCase):
             self.assertEqual(c["type"], "cmd")
             self.assertEqual(c["slot"], 5)
             self.assertAlmostEqual(c["heading_deg"], compass_deg_from_theta(theta))
+            self.assertNotIn("done", c)
+            # With self arrival the controller's status and done travel too.
+            bridge._post(pmt.intern("cmd"), pmt.to_pmt({"heading": theta, "slot": 6,
+                                                        "stage": 3, "status": 2,
+                                                        "done": True}))
+            self.assertTrue(wait_until(lambda: len(vehicle.commands) >= 2))
+            c = vehicle.commands[1]
+            self.assertEqual((c["slot"], c["stage"], c["status"], c["done"]),
+                             (6, 3, 2, True))
 
             def latest_heading():
                 n = nav.num_messages()

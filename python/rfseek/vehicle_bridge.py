@@ -122,9 +122,11 @@ class vehicle_bridge(gr.basic_block):
         with self._lock:
             self._seq += 1
             out = {"type": "cmd", "seq": self._seq, "heading_deg": compass_deg_from_theta(theta)}
-            for key in ("slot", "stage", "time"):
+            for key in ("slot", "stage", "status", "time"):
                 if isinstance(d.get(key), (int, float)) and not isinstance(d.get(key), bool):
                     out[key] = d[key]
+            if isinstance(d.get("done"), bool):  # self arrival: the mission's end
+                out["done"] = d["done"]
             self._last_cmd = json.dumps(out).encode("utf-8")
         self._send(self._last_cmd)
 

@@ -18,6 +18,7 @@
 #include <complex>
 #include <cstdio>
 #include <string>
+#include <utility>
 #include <vector>
 
 using namespace gr::rfseek;
@@ -93,13 +94,26 @@ int main(int argc, char** argv)
         ->check(CLI::IsMember(tone_estimator::windows()))
         ->capture_default_str();
     app.add_option("--out", o.out, "CSV for scripts/plot_estimator.py");
-    app.add_option("--snr-min", o.snr_min, "lowest SNR (dB)")->capture_default_str();
-    app.add_option("--snr-max", o.snr_max, "highest SNR (dB)")->capture_default_str();
-    app.add_option("--snr-step", o.snr_step, "SNR step (dB)")
-        ->check(CLI::PositiveNumber)
+    app.add_option("--snr-min", o.snr_min, "lowest SNR (dB, in [-100, 100])")
+        ->check(CLI::Range(-100.0, 100.0))
+        ->capture_default_str();
+    app.add_option("--snr-max", o.snr_max, "highest SNR (dB, in [--snr-min, 100])")
+        ->check(CLI::Range(-100.0, 100.0))
+        ->capture_default_str();
+    app.add_option("--snr-step", o.snr_step, "SNR step (dB, in [0.01, 200])")
+        ->check(CLI::Range(0.01, 200.0))
         ->capture_default_str();
     try {
         app.parse(argc, argv);
+        for (const auto& [name, v] :
+             { std::pair<const char*, double>{ "--snr-min", o.snr_min },
+               std::pair<const char*, double>{ "--snr-max", o.snr_max },
+               std::pair<const char*, double>{ "--snr-step", o.snr_step } })
+            if (!std::isfinite(v))
+                throw CLI::ValidationError(name, "must be a finite number of dB");
+        if (!(o.snr_min <= o.snr_max))
+            throw CLI::ValidationError(
+                "--snr-max", "must be >= --snr-min (" + std::to_string(o.snr_min) + ")");
     } catch (const CLI::ParseError& e) {
         if (e.get_exit_code() == 0)
             return app.exit(e);

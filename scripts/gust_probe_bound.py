@@ -111,19 +111,19 @@ def main(argv=None):
             setattr(a, key, value)
     for name, v in (("--speed", a.speed), ("--carrier", a.carrier), ("--tau", a.tau),
                     ("--slot", a.slot)):
-        if not v > 0.0:
-            p.error("%s must be > 0, got %g" % (name, v))
+        if not 0.0 < v < math.inf:
+            p.error("%s must be > 0 and finite, got %g" % (name, v))
     for name, v in (("--gust", a.gust), ("--noise", a.noise), ("--turn-rate", a.turn_rate)):
-        if not v >= 0.0:
-            p.error("%s must be >= 0, got %g" % (name, v))
+        if not 0.0 <= v < math.inf:
+            p.error("%s must be >= 0 and finite, got %g" % (name, v))
     if a.gust == 0.0 and a.noise == 0.0:
         p.error("--gust and --noise are both 0: nothing limits the fit")
     try:
         slot_list = [int(v) for v in a.slots.split(",")]
     except ValueError:
         p.error("--slots must be comma-separated integers >= 2, got %r" % a.slots)
-    if not slot_list or min(slot_list) < 2:
-        p.error("--slots must be comma-separated integers >= 2, got %r" % a.slots)
+    if not slot_list or min(slot_list) < 2 or max(slot_list) > 2000:
+        p.error("--slots must be comma-separated integers in [2, 2000], got %r" % a.slots)
     try:
         delta_list = floats(a.deltas)
     except ValueError:

@@ -18,6 +18,7 @@ Gust 0 has no correlation time: it is run once per altimeter error.
 import argparse
 import json
 import os
+import shutil
 import subprocess
 import sys
 
@@ -25,7 +26,9 @@ import sys
 def main(argv):
     p = argparse.ArgumentParser(description=__doc__,
                                 formatter_class=argparse.RawDescriptionHelpFormatter)
-    p.add_argument("--mc", default="rfseek-montecarlo", help="rfseek-montecarlo to run")
+    p.add_argument("--mc", default=None,
+                   help="rfseek-montecarlo to run (default: build/apps/ beside this "
+                        "script's source tree if built there, else on PATH)")
     p.add_argument("--runs", type=int, default=200)
     p.add_argument("--seed", type=int, default=1)
     p.add_argument("--preset", default="realistic")
@@ -43,6 +46,18 @@ def main(argv):
     a = p.parse_args(argv)
     if a.runs < 1:
         p.error("--runs must be >= 1")
+    if a.mc is None:
+        here = os.path.dirname(os.path.abspath(__file__))
+        built = os.path.join(here, "..", "build", "apps", "rfseek-montecarlo")
+        a.mc = built if os.access(built, os.X_OK) else shutil.which("rfseek-montecarlo")
+    if not a.mc or not os.access(a.mc, os.X_OK):
+        p.error("rfseek-montecarlo not found (give --mc PATH)")
+    try:
+        for g in a.gusts.split(","):
+            float(g)
+        [float(v) for v in a.taus.split(",") + a.altimeter.split(",")]
+    except ValueError:
+        p.error("--gusts, --taus and --altimeter must be comma-separated numbers")
     os.makedirs(a.out, exist_ok=True)
     cells = []
     for alt in a.altimeter.split(","):

@@ -8,7 +8,10 @@ beacon slots of the reference scenario (seed 7) received in burst mode, flown in
 loop, with the beacon tags, heading reports and the live measurements.
 
     scripts/make_test_recording.py [BASE]     (run from a build tree or an install)
+
+Without BASE it rewrites the committed recording in the source tree.
 """
+import argparse
 import os
 import sys
 
@@ -19,7 +22,13 @@ from gnuradio.rfseek.sigmf import sigmf_recorder
 
 def main(argv):
     here = os.path.dirname(os.path.abspath(__file__))
-    base = argv[0] if argv else os.path.join(here, "..", "examples", "data", "sim_beacons")
+    p = argparse.ArgumentParser(prog="make_test_recording.py", description=__doc__,
+                                formatter_class=argparse.RawDescriptionHelpFormatter)
+    p.add_argument("base", nargs="?", default=None,
+                   help="write BASE.sigmf-data and BASE.sigmf-meta (default: the committed "
+                        "examples/data/sim_beacons)")
+    base = p.parse_args(argv).base or os.path.join(here, "..", "examples", "data",
+                                                   "sim_beacons")
     sc = rfseek.scenario(seed=7)
     sc.flight_cap_m = 60 * sc.speed_mps * sc.slot_period_s  # 60 slots
     tb = flowgraphs.closed_loop(sc, "paper")

@@ -18,13 +18,27 @@ import matplotlib.pyplot as plt  # noqa: E402
 
 
 def main(argv):
+    if len(argv) == 2 and argv[1] in ("-h", "--help"):
+        print(__doc__)
+        return 0
     if len(argv) != 3:
         print(__doc__, file=sys.stderr)
         return 2
-    rows = list(csv.DictReader(open(argv[1])))
+    try:
+        with open(argv[1]) as f:
+            rows = list(csv.DictReader(f))
+    except OSError as e:
+        print("plot_estimator: error: %s: %s" % (argv[1], e.strerror), file=sys.stderr)
+        return 2
     if not rows:
         print("plot_estimator: no rows in %s" % argv[1], file=sys.stderr)
         return 1
+    need = {"interpolator", "window", "snr_db", "crb_hz", "rmse_hz", "outlier_rate"}
+    if not need <= set(rows[0]):
+        print("plot_estimator: error: %s lacks the columns %s: not an "
+              "rfseek-estimator-study CSV" % (argv[1], ", ".join(sorted(need - set(rows[0])))),
+              file=sys.stderr)
+        return 2
     interps = sorted({r["interpolator"] for r in rows})
     fig, (ax1, ax2) = plt.subplots(2, 1, figsize=(7, 8), sharex=True,
                                    gridspec_kw={"height_ratios": [3, 1]})

@@ -48,9 +48,16 @@ def fly(live, seed, args, via):
     r = subprocess.run(cmd, capture_output=True, text=True, timeout=args.timeout + 120)
     m = re.search(r"rfseek-live: (arrived|stopped), (\d+) m flown", r.stderr)
     if r.returncode != 0 or not m:
-        raise RuntimeError("seed %d (%s) failed:\n%s" % (
-            seed, via or "direct", r.stderr[-1500:]))
-    return m.group(1) == "arrived", float(m.group(2))
+        errors = [l for l in r.stderr.splitlines() if "error" in l]
+        raise RunFailed("seed %d (%s): %s" % (
+            seed, via or "direct", errors[-1] if errors else
+            "rfseek-live exited %d:\n%s" % (r.returncode, r.stderr[-1500:])))
+    late = re.search(r"simulator: (\d+) commands applied late", r.stderr)
+    return m.group(1) == "arrived", float(m.group(2)), int(late.group(1)) if late else 0
+
+
+class RunFailed(Exception):
+    """A flight that rfseek-live refused or could not finish."""
 
 
 def main(argv):
@@ -71,6 +78,21 @@ def main(argv):
     p.add_argument("--timeout", type=float, default=600.0,
                    help="wall seconds per run before it is stopped")
     args = p.parse_args(argv)
+    if args.seeds < 1 or args.first < 0:
+        p.error("--seeds must be >= 1 and --first >= 0")
+    if not (math.isfinite(args.speedup) and args.speedup > 0 and
+            math.isfinite(args.timeout) and args.timeout > 0):
+        p.error("--speedup and --timeout must be finite and > 0")
+    from gnuradio import rfseek
+    probe = rfseek.scenario()
+    try:
+        rfseek.apply_sets(probe, ["initial_distance_m=%r" % args.distance] + args.set)
+        probe.validate()
+    except ValueError as e:
+        p.error(str(e))
+    if not args.distance > probe.success_radius_m:
+        p.error("--distance %g: must be beyond the arrival radius success_radius_m (%g m)"
+                % (args.distance, probe.success_radius_m))
     here = os.path.dirname(os.path.abspath(__file__))
     live = os.path.join(here, "..", "apps", "rfseek-live")
 
@@ -79,12 +101,18 @@ def main(argv):
         p.error("--via: mavlink or radio:FAMILY")
     name = args.via.split(":")[0]
     print("seed  direct ratio  %7s ratio  difference" % name)
+    late = 0
     for seed in range(args.first, args.first + args.seeds):
-        a_ok, a = fly(live, seed, args, None)
-        b_ok, b = fly(live, seed, args, args.via)
+        try:
+            a_ok, a, late_a = fly(live, seed, args, None)
+            b_ok, b, late_b = fly(live, seed, args, args.via)
+        except RunFailed as e:
+            print("rehearsal_pairs.py: error: %s" % e, file=sys.stderr)
+            return 1
+        late += late_a + late_b
         # rfseek-live reports the flight to the arrival radius; the ratio is to the
         # straight line from the start to that radius, as the study's.
-        line = args.distance - 200.0
+        line = args.distance - probe.success_radius_m
         rows.append((a / line, b / line, a_ok, b_ok))
         print("%4d  %12.3f%s  %13.3f%s  %+10.3f" % (seed, a / line, "" if a_ok else "*",
                                                    b / line, "" if b_ok else "*",
@@ -99,6 +127,7 @@ def main(argv):
         name, sum(r[1] for r in rows) / n, sum(r[3] for r in rows), n))
     print("paired difference (%s - direct): %+.4f +- %.4f (standard error)"
           % (name, mean, se))
+    print("commands the simulator flew late (free-running, over all runs): %d" % late)
     return 0
 
 

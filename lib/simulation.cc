@@ -11,6 +11,7 @@
 
 #include <gr-rfseek/simulation.h>
 #include <gr-rfseek/tone_estimator.h>
+#include <algorithm>
 #include <cmath>
 #include <memory>
 #include <stdexcept>
@@ -53,6 +54,16 @@ simulation::simulation(const scenario& sc,
 
 seeker_config simulation::seeker_for(const scenario& sc, const std::string& strategy)
 {
+    // A strategy name is checked here, where it is given (the rest of the configuration
+    // is validated by its user, after any settings of its own).
+    const auto names = seeker::strategies();
+    if (std::find(names.begin(), names.end(), strategy) == names.end()) {
+        std::string all;
+        for (const auto& s : names)
+            all += (all.empty() ? "" : ", ") + s;
+        throw std::invalid_argument("simulation.seeker_for: strategy '" + strategy +
+                                    "': must be one of " + all);
+    }
     seeker_config c;
     c.strategy = strategy;
     // What the vehicle believes of itself: the truth plus the scenario's sensor errors.

@@ -214,6 +214,9 @@ public:
                              double gust_tau_s = 5.0,
                              double altitude_m = 0.0,
                              double altitude_sigma_m = 0.0);
+    //! One measurement: time (s); the vehicle's dead-reckoned position (m, x east, y
+    //! north in its compass frame) and air velocity (m/s) then; the measured frequency
+    //! (Hz, CFO included: the fit solves for it). Non-finite ones are skipped.
     void add(double time_s,
              double x_m,
              double y_m,

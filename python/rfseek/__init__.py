@@ -38,6 +38,43 @@ except Exception:  # no (or a broken) Qt or matplotlib: every other block works
     pass
 
 
+def _fields(obj):
+    """The data fields of a bound parameter or result struct (its settable attributes
+    that are not methods), in a stable order."""
+    cls = type(obj)
+    names = [k for k in cls.keys() if hasattr(obj, k)] if hasattr(cls, "keys") else sorted(
+        k for k in dir(obj) if not k.startswith("_") and not callable(getattr(obj, k)))
+    return names
+
+
+def _rebuild(cls, state):
+    obj = cls()
+    for key, value in state.items():
+        setattr(obj, key, value)
+    return obj
+
+
+def _give_values(cls, copyable=True, readable=True):
+    """Copying and pickling (multiprocessing, Dask) and a readable repr for a bound
+    struct whose fields are plain values: state is {field: value}, restored field by
+    field (so a copy is independent and an out-of-range object pickles as it is)."""
+    def state(self):
+        return {k: getattr(self, k) for k in _fields(self)}
+    if copyable:
+        cls.__reduce__ = lambda self: (_rebuild, (type(self), state(self)))
+        cls.__copy__ = lambda self: _rebuild(type(self), state(self))
+        cls.__deepcopy__ = lambda self, memo: _rebuild(type(self), state(self))
+    if readable:
+        cls.__repr__ = lambda self: "%s(%s)" % (type(self).__name__, ", ".join(
+            "%s=%r" % (k, getattr(self, k)) for k in _fields(self)))
+
+
+_give_values(scenario, readable=False)  # noqa: F405 (it has its own repr)
+_give_values(seeker_config)  # noqa: F405
+_give_values(estimator_config)  # noqa: F405
+_give_values(run_summary, copyable=False)  # noqa: F405 (made by a run only)
+
+
 def deg(x):
     """Degrees to radians (the module's angles are radians, CCW from +x)."""
     return _math.radians(x)
@@ -70,6 +107,8 @@ def scenario_from(**fields):
 def apply_sets(sc, sets):
     """Apply "KEY=VALUE" strings (command-line --set options) to a scenario; ValueError
     names a malformed item or a bad field."""
+    if isinstance(sets, (str, bytes)) or not hasattr(sets, "__iter__"):
+        raise ValueError("sets: a list of 'KEY=VALUE' strings, got %r" % (sets,))
     for kv in sets:
         key, sep, value = kv.partition("=")
         if not sep:

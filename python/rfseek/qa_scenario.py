@@ -62,6 +62,35 @@ class qa_scenario(gr_unittest.TestCase):
         with self.assertRaises(ValueError):
             w.advance(float("nan"))
 
+    def test_copies_and_pickles_are_independent_and_whole(self):
+        import copy
+        import pickle
+        sc = rfseek.scenario(seed=3, wind_speed_mps=4.0, start_angle_rad=0.5)
+        for twin in (copy.copy(sc), copy.deepcopy(sc), pickle.loads(pickle.dumps(sc))):
+            self.assertEqual(twin.to_json(), sc.to_json())
+            twin.snr_db = -3.0
+            self.assertEqual(sc.snr_db, 0.0)
+        cfg = rfseek.seeker_config(strategy="adaptive", adaptive_gain=0.6)
+        back = pickle.loads(pickle.dumps(cfg))
+        for key in cfg.keys():
+            if hasattr(cfg, key):
+                a, b = getattr(cfg, key), getattr(back, key)
+                self.assertTrue(a == b or (a != a and b != b), key)  # NaN == NaN here
+        self.assertIn("strategy='adaptive'", repr(cfg))
+        self.assertIn("window='hann'", repr(rfseek.estimator_config(window="hann")))
+        # A run's summary prints its fields.
+        r = rfseek.simulation(rfseek.scenario(seed=2, initial_distance_m=400.0),
+                              rfseek.simulation.seeker_for(
+                                  rfseek.scenario(seed=2, initial_distance_m=400.0),
+                                  "paper")).run()
+        self.assertIn("ratio=%r" % r.summary.ratio, repr(r.summary))
+
+    def test_helpers_name_what_is_wrong(self):
+        with self.assertRaisesRegex(ValueError, "strategy 'nope'"):
+            rfseek.simulation.seeker_for(rfseek.scenario(), "nope")
+        with self.assertRaisesRegex(ValueError, "a list of 'KEY=VALUE' strings"):
+            rfseek.apply_sets(rfseek.scenario(), "snr_db=3")
+
 
 if __name__ == "__main__":
     gr_unittest.run(qa_scenario)

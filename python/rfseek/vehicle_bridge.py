@@ -45,10 +45,13 @@ def theta_from_compass_deg(heading_deg):
 
 
 def parse_nav(data):
-    """A nav datagram's compass heading, or raise ValueError saying what is wrong."""
+    """(heading_deg, time) of a nav datagram (bytes, or str) {"type": "nav",
+    "heading_deg": compass degrees in [0, 360), "time": optional}; ValueError saying
+    what is wrong."""
     try:
-        d = json.loads(data.decode("utf-8"))
-    except (UnicodeDecodeError, ValueError):
+        d = json.loads(data.decode("utf-8") if isinstance(data, (bytes, bytearray))
+                       else data)
+    except (UnicodeDecodeError, TypeError, ValueError):
         raise ValueError("not JSON")
     if not isinstance(d, dict) or d.get("type") != "nav":
         raise ValueError("not a nav object")

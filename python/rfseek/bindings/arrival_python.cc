@@ -4,7 +4,7 @@
  */
 
 /* BINDTOOL_HEADER_FILE(arrival.h) */
-/* BINDTOOL_HEADER_FILE_HASH(7191079ca6f1e46314e0608e84cc43eb) */
+/* BINDTOOL_HEADER_FILE_HASH(1d97b6e45f7a46eac2e5e3960c1b5b22) */
 
 #include <gr-rfseek/arrival.h>
 #include <pybind11/pybind11.h>
@@ -214,21 +214,19 @@ void bind_emitter_locator_class(py::module& m)
              py::arg("altitude_sigma_m") = 0.0,
              "A locator for the wavelength, a search radius around the path, a gust "
              "prior (std, correlation time) and a height prior (altitude, std; 0: none).")
-        .def("add",
-             &emitter_locator::add,
-             py::arg("time_s"),
-             py::arg("x_m"),
-             py::arg("y_m"),
-             py::arg("vx_mps"),
-             py::arg("vy_mps"),
-             py::arg("freq_hz"),
-             "wavelength_m: lambda = c / f_c; search_radius_m: grid extent around the "
-             "path; gust_mps, gust_tau_s: the gust prior (first-order Gauss-Markov, std "
-             "per axis and correlation time; gust_mps = 0: a constant wind only); "
-             "altitude_m, altitude_sigma_m: the height prior (the vehicle's height above "
-             "the emitter's ground as its altimeter holds it, and that figure's std; "
-             "sigma 0: fitted freely). The mean wind always has a weak prior (0 +- 15 "
-             "m/s per axis).")
+        .def(
+            "add",
+            &emitter_locator::add,
+            py::arg("time_s"),
+            py::arg("x_m"),
+            py::arg("y_m"),
+            py::arg("vx_mps"),
+            py::arg("vy_mps"),
+            py::arg("freq_hz"),
+            "One measurement: time (s); the vehicle's dead-reckoned position (m, x east, "
+            "y north in its compass frame) and air velocity (m/s) then; the measured "
+            "frequency (Hz, CFO included: the fit solves for it). Non-finite ones are "
+            "skipped.")
         .def("__len__", &emitter_locator::size)
         .def("clear", &emitter_locator::clear, "Forget the samples.")
         .def("fit",

@@ -151,14 +151,7 @@ void validate_arrival(const seeker_config& c)
 
 void seeker_config::validate() const
 {
-    const auto names = seeker::strategies();
-    if (std::find(names.begin(), names.end(), strategy) == names.end()) {
-        std::string all;
-        for (const auto& s : names)
-            all += (all.empty() ? "" : ", ") + s;
-        throw std::invalid_argument("seeker_config.strategy = '" + strategy +
-                                    "': must be one of " + all);
-    }
+    require_strategy(strategy, "seeker_config.strategy");
     if (!(speed_mps > 0.0) || !std::isfinite(speed_mps))
         bad("speed_mps", speed_mps, "> 0");
     if (!(carrier_hz > 0.0) || !std::isfinite(carrier_hz))

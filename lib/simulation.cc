@@ -9,6 +9,7 @@
  * estimate, the command.
  */
 
+#include "strategies.h"
 #include <gr-rfseek/simulation.h>
 #include <gr-rfseek/tone_estimator.h>
 #include <algorithm>
@@ -56,14 +57,7 @@ seeker_config simulation::seeker_for(const scenario& sc, const std::string& stra
 {
     // A strategy name is checked here, where it is given (the rest of the configuration
     // is validated by its user, after any settings of its own).
-    const auto names = seeker::strategies();
-    if (std::find(names.begin(), names.end(), strategy) == names.end()) {
-        std::string all;
-        for (const auto& s : names)
-            all += (all.empty() ? "" : ", ") + s;
-        throw std::invalid_argument("simulation.seeker_for: strategy '" + strategy +
-                                    "': must be one of " + all);
-    }
+    require_strategy(strategy, "simulation.seeker_for: strategy");
     seeker_config c;
     c.strategy = strategy;
     // What the vehicle believes of itself: the truth plus the scenario's sensor errors.

@@ -17,11 +17,27 @@
 #include "outlier_filter.h"
 #include "turn_model.h"
 #include <gr-rfseek/seeker.h>
+#include <algorithm>
 #include <cmath>
 #include <memory>
+#include <stdexcept>
+#include <string>
 
 namespace gr {
 namespace rfseek {
+
+//! std::invalid_argument "<what> = '<name>': must be one of ..." unless name is one of
+//! seeker::strategies().
+inline void require_strategy(const std::string& name, const std::string& what)
+{
+    const auto names = seeker::strategies();
+    if (std::find(names.begin(), names.end(), name) != names.end())
+        return;
+    std::string all;
+    for (const auto& s : names)
+        all += (all.empty() ? "" : ", ") + s;
+    throw std::invalid_argument(what + " = '" + name + "': must be one of " + all);
+}
 
 std::unique_ptr<seeker> make_two_stage_seeker(const seeker_config& cfg);
 std::unique_ptr<seeker> make_rss_seeker(const seeker_config& cfg);

@@ -86,7 +86,7 @@ class qa_scenario(gr_unittest.TestCase):
         self.assertIn("ratio=%r" % r.summary.ratio, repr(r.summary))
 
     def test_helpers_name_what_is_wrong(self):
-        with self.assertRaisesRegex(ValueError, "strategy 'nope'"):
+        with self.assertRaisesRegex(ValueError, "seeker_for: strategy = 'nope'"):
             rfseek.simulation.seeker_for(rfseek.scenario(), "nope")
         with self.assertRaisesRegex(ValueError, "a list of 'KEY=VALUE' strings"):
             rfseek.apply_sets(rfseek.scenario(), "snr_db=3")

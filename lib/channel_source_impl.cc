@@ -286,19 +286,13 @@ int channel_source_impl::work(int noutput_items,
             d_next_ready = true;
         }
         if (!d_started || d_next_ready) {
-            if (produced > 0 && !slot_due())
+            if (produced > 0 && time_to_due().count() > 0)
                 break; // hand over what is ready; the next call waits
             // In short naps, each an interruption point (stop() returns promptly) after
             // which the pace is read again (set_speedup, set_realtime apply at once).
-            while (!slot_due()) {
-                const auto left =
-                    d_t0 +
-                    std::chrono::duration_cast<std::chrono::microseconds>(
-                        std::chrono::duration<double>(d_world.time_s() / d_speedup)) -
-                    std::chrono::steady_clock::now();
-                const auto nap = std::clamp<long long>(
+            for (auto left = time_to_due(); left.count() > 0; left = time_to_due()) {
+                const auto nap = std::min<long long>(
                     std::chrono::duration_cast<std::chrono::microseconds>(left).count(),
-                    0,
                     MAX_NAP_US);
                 lock.unlock();
                 boost::this_thread::sleep(boost::posix_time::microseconds(nap));
@@ -406,20 +400,22 @@ void channel_source_impl::set_speedup(double speedup)
     reanchor(); // the pace changes from now on, without a jump
 }
 
-bool channel_source_impl::slot_due() const
+std::chrono::steady_clock::duration channel_source_impl::paced_time() const
+{
+    return std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+        std::chrono::duration<double>(d_world.time_s() / d_speedup));
+}
+
+std::chrono::steady_clock::duration channel_source_impl::time_to_due() const
 {
     if (!d_realtime)
-        return true;
-    return std::chrono::steady_clock::now() >=
-           d_t0 + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
-                      std::chrono::duration<double>(d_world.time_s() / d_speedup));
+        return std::chrono::steady_clock::duration::zero();
+    return d_t0 + paced_time() - std::chrono::steady_clock::now();
 }
 
 void channel_source_impl::reanchor()
 {
-    d_t0 = std::chrono::steady_clock::now() -
-           std::chrono::duration_cast<std::chrono::steady_clock::duration>(
-               std::chrono::duration<double>(d_world.time_s() / d_speedup));
+    d_t0 = std::chrono::steady_clock::now() - paced_time();
 }
 
 } // namespace rfseek

@@ -56,8 +56,11 @@ private:
     void drop(const std::string& kind, const pmt::pmt_t& msg);
     void begin_slot(std::uint64_t offset);
     void publish_state();
-    void reanchor();       // d_t0 such that the world's time is due now
-    bool slot_due() const; // not paced, or the world's time has come (d_setlock held)
+    void reanchor(); // d_t0 such that the world's time is due now
+    // The world's present time on the pace's clock (d_setlock held).
+    std::chrono::steady_clock::duration paced_time() const;
+    // Until the world's present slot is due (zero or less: due, or not paced).
+    std::chrono::steady_clock::duration time_to_due() const;
     static constexpr long long MAX_NAP_US = 20000; // longest pacing sleep (20 ms)
 
     world d_world;

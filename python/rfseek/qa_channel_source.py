@@ -44,6 +44,16 @@ class pilot(gr.basic_block):
         self.message_port_pub(pmt.intern("cmd"), cmd)
 
 
+def wait_until(condition, timeout_s):
+    """Polls condition until it holds (True) or timeout_s passes (False)."""
+    deadline = time.monotonic() + timeout_s
+    while not condition():
+        if time.monotonic() > deadline:
+            return False
+        time.sleep(0.005)
+    return True
+
+
 def scenario(**kw):
     sc = rfseek.scenario(initial_distance_m=230.0, start_angle_rad=0.0,
                          start_heading_rad=math.pi, seed=3)
@@ -169,35 +179,40 @@ class qa_channel_source(gr_unittest.TestCase):
         self.assertEqual(len(snk.data()), 10 * sc.slot_samples)
 
     def test_paced_source_goes_on_at_once_after_a_restart(self):
-        # Paced at 2 x real time (a slot every 25 ms). Started again after 3 s, the world's
-        # present slot is due at once, so 1.5 s brings about 60 slots. Before, every slot
-        # waited as long again as the flight had run (3 s) and none came; 20 is the
-        # least accepted, a wide margin for a loaded machine.
+        # Pacing is a matter of wall time, so this test waits on conditions (no fixed
+        # sleeps). Paced at 2 x real time (a slot every 25 ms), the first run flies 120
+        # slots (3 s). Started again, the world's present slot must be due at once: 20
+        # more slots take 0.5 s. Before the fix every slot waited as long again as the
+        # first run had lasted (3 s), so the limit of half that has a wide margin both
+        # ways.
         src = rfseek.channel_source(scenario(initial_distance_m=5000.0), mode="burst",
                                     lockstep=False, realtime=True, speedup=2.0)
         tb = gr.top_block()
         tb.connect(src, blocks.null_sink(gr.sizeof_gr_complex))
         tb.start()
-        time.sleep(3.0)
+        self.assertTrue(wait_until(lambda: src.slot() >= 120, 60.0))
         tb.stop()
         tb.wait()
         first = src.slot()
-        self.assertGreater(first, 20)
+        stall = first * 0.05 / 2.0  # s: the first run's length, what the bug waited
+        t0 = time.monotonic()
         tb.start()
-        time.sleep(1.5)
+        self.assertTrue(wait_until(lambda: src.slot() >= first + 20, 60.0))
+        elapsed = time.monotonic() - t0
         tb.stop()
         tb.wait()
-        self.assertGreaterEqual(src.slot() - first, 20)
+        self.assertLess(elapsed, 0.5 * stall)
 
     def test_stop_does_not_wait_for_a_slow_pace(self):
         # At 0.001 x real time the next slot is 50 s away: stop() must interrupt the wait
-        # (it used to sleep it out). Checked from another thread with a generous limit.
+        # (it used to sleep it out). Once the first slot is out the source is waiting;
+        # stop() runs in another thread, given a generous limit.
         src = rfseek.channel_source(scenario(), mode="continuous", lockstep=False,
                                     realtime=True, speedup=0.001)
         tb = gr.top_block()
         tb.connect(src, blocks.null_sink(gr.sizeof_gr_complex))
         tb.start()
-        time.sleep(0.2)
+        self.assertTrue(wait_until(lambda: src.slot() >= 1, 20.0))
         done = threading.Event()
         stopper = threading.Thread(target=lambda: (tb.stop(), tb.wait(), done.set()),
                                    daemon=True)

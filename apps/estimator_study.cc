@@ -89,7 +89,9 @@ int main(int argc, char** argv)
     app.add_option("--trials", o.trials, "trials per point")
         ->check(CLI::Range(1, 100000000))
         ->capture_default_str();
-    app.add_option("--seed", o.seed, "seed")->capture_default_str();
+    app.add_option("--seed", o.seed, "seed")
+        ->check(CLI::Range(std::uint64_t(0), std::uint64_t(9000000000000000000ULL)))
+        ->capture_default_str();
     app.add_option("--window", o.window, "window")
         ->check(CLI::IsMember(tone_estimator::windows()))
         ->capture_default_str();

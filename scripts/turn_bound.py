@@ -46,7 +46,10 @@ def bound(preset, sets, speed, runs, seed):
         sc.set("seed", str(seed + i))
         ratios.append(flight_ratio(sc))
     r = np.array(ratios)
-    return float(np.nanmean(r)), float(np.nanpercentile(r, 90)), int(np.isnan(r).sum())
+    lost = int(np.isnan(r).sum())
+    if lost == len(r):  # nothing to average: said as "-" in the table, not NaN
+        return None, None, lost
+    return float(np.nanmean(r)), float(np.nanpercentile(r, 90)), lost
 
 
 def main(argv):
@@ -74,9 +77,11 @@ def main(argv):
             return 2
     print("| speed_mps | mean | p90 | not arrived |")
     print("| --- | --- | --- | --- |")
+    def cell(x):
+        return "-" if x is None else "%.3f" % x
     for v, mean, p90, lost in rows:
-        print("| %s | %.3f | %.3f | %d |" % ("-" if v is None else "%g" % v, mean, p90,
-                                            lost))
+        print("| %s | %s | %s | %d |" % ("-" if v is None else "%g" % v, cell(mean),
+                                        cell(p90), lost))
     return 0
 
 

@@ -156,6 +156,24 @@ def frequency_power_figure(col, title=None, path=None):
 # ---------------------------------------------------------------------------------------
 # Monte Carlo figures (rfseek-montecarlo's JSON)
 
+def _study(result, need=None):
+    """`result` checked to be rfseek-montecarlo's JSON (the dict json.load gives of its
+    --out file), with the key `need` when given: ValueError naming what is wrong
+    otherwise (a single run's run_result, a path, a study without --sweep)."""
+    if not (isinstance(result, dict) and "rows" in result and "strategies" in result):
+        raise ValueError(
+            "result = %s: must be rfseek-montecarlo's JSON, the dict json.load gives of "
+            "its --out file (one run's run_result goes to trajectory_figure("
+            "columns_from_result(r)))" % type(result).__name__)
+    if need == "sweep" and "sweep" not in result:
+        raise ValueError("result: a study without --sweep; this figure needs one made "
+                         "with --sweep KEY=V1,V2,...")
+    if need and need not in result:
+        raise ValueError("result: no %r in this JSON; made by an older "
+                         "rfseek-montecarlo? Run the study again" % need)
+    return result
+
+
 def _rows_by_strategy(result, sweep_value=None):
     out = {}
     for r in result["rows"]:
@@ -170,6 +188,7 @@ def _rows_by_strategy(result, sweep_value=None):
 def distance_histograms(result, path=None, bins=40):
     """Figs. 7-8: histogram of the distance flown per strategy (failed runs, which stop
     at the flight cap, are drawn in grey)."""
+    _study(result, "summary")
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
@@ -205,6 +224,7 @@ def distance_histograms(result, path=None, bins=40):
 
 def comparison_chart(result, paper=None, path=None):
     """Mean, median and p90 of the distance ratio per strategy, with the paper's means."""
+    _study(result, "summary")
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
@@ -240,6 +260,7 @@ def in_wind(result):
     plain ratio): then the fair measure is the straight-line ratio, the air distance
     over the air distance of the straight ground line in the same wind (1 for a straight
     ground track, whatever the wind)."""
+    _study(result)
     return any("straight_ratio" in r and "error" not in r
                and r["straight_ratio"] != r["ratio"] for r in result["rows"])
 
@@ -248,6 +269,7 @@ def sweep_metric(result, metric="auto"):
     """(JSON key prefix, axis label) of the ratio a sweep is drawn and tabled with:
     metric "ratio" (distance over the shortest path), "straight_ratio" or "auto"
     (straight_ratio when the rows flew in wind)."""
+    _study(result)
     if metric not in ("auto", "ratio", "straight_ratio"):
         raise ValueError("metric must be auto, ratio or straight_ratio, not %r" % metric)
     if metric == "auto":
@@ -261,6 +283,7 @@ def sweep_plot(result, path=None, metric="auto"):
     """Ratio (mean, p90) and success rate versus the swept parameter, per strategy; one
     column of panels per preset when the study swept several (--preset A,B --sweep). In
     wind (metric "auto") the ratio is the straight-line ratio (sweep_metric)."""
+    _study(result, "sweep")
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
@@ -303,6 +326,7 @@ def sweep_plot(result, path=None, metric="auto"):
 def sweep_table(result, metric="auto"):
     """The sweep as Markdown: a row per strategy, a column per swept value, cells
     "mean / p90 (success)" of the ratio sweep_metric picks."""
+    _study(result, "sweep")
     key, label = sweep_metric(result, metric)
     sw = result["sweep"]
     presets = []
@@ -335,6 +359,7 @@ def preset_plot(result, path=None, ymax=1.6):
     """Strategies compared across presets (rfseek-montecarlo --preset A,B,...): mean ratio
     (bars) and p90 (ticks) above, success rate below. Bars beyond ymax are cut and
     labelled with their value."""
+    _study(result, "points")
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt

@@ -289,6 +289,21 @@ class qa_montecarlo(gr_unittest.TestCase):
         self.assertEqual(plots.sweep_metric(res, "ratio")[0], "ratio")
         with self.assertRaises(ValueError):
             plots.sweep_metric(res, "speed")
+        # What is not a study's JSON is named, not a KeyError or TypeError: one run's
+        # result, a path, a study made without --sweep given to a sweep figure.
+        from gnuradio import rfseek
+        sc = rfseek.scenario(seed=1, initial_distance_m=300.0)
+        one = rfseek.simulation(sc, rfseek.simulation.seeker_for(sc, "paper")).run()
+        for bad in (one, out, None):
+            with self.assertRaisesRegex(ValueError, "rfseek-montecarlo's JSON"):
+                plots.sweep_plot(bad)
+            with self.assertRaisesRegex(ValueError, "rfseek-montecarlo's JSON"):
+                plots.distance_histograms(bad)
+        flat = dict(res)
+        del flat["sweep"]
+        for fig in (plots.sweep_plot, plots.sweep_table):
+            with self.assertRaisesRegex(ValueError, "without --sweep"):
+                fig(flat)
         plot = subprocess.run([sys.executable, os.path.join(SOURCE, "apps",
                                                             "rfseek-plot-montecarlo"), out,
                                "--table"], capture_output=True, text=True)

@@ -289,6 +289,14 @@ class qa_radios(gr_unittest.TestCase):
             rfseek.rx_plan("hackrf", 2.4e9, out_rate=300e3)
         with self.assertRaisesRegex(ValueError, "lo_offset"):
             rfseek.rx_plan("rtlsdr", 915e6, lo_offset_hz=500e3)
+        # Not a number at all (None, a string, NaN): named, before any arithmetic.
+        for kw, name in (({"out_rate": None}, "out_rate"), ({"freq_hz": "2.4G"}, "freq"),
+                         ({"device_rate": float("nan")}, "device_rate"),
+                         ({"lo_offset_hz": "x"}, "lo_offset"),
+                         ({"beacon_ppm": float("inf")}, "beacon_ppm"),
+                         ({"max_speed_mps": None}, "max_speed_mps")):
+            with self.assertRaisesRegex(ValueError, "^%s = " % name):
+                rfseek.rx_plan("usrp_b2xx", **kw)
         # A gain that is not a number is refused before any device is looked for.
         for gain in (float("nan"), float("inf"), "loud"):
             with self.assertRaisesRegex(ValueError, "gain = .*RTL-SDR"):

@@ -101,6 +101,10 @@ class qa_rehearsal(gr_unittest.TestCase):
         out, err = p.communicate(timeout=60)
         self.assertEqual(p.returncode, 2, err)
         self.assertIn("--zmq", err)
+        # From Python: a plan asked for something that is not a scenario is named.
+        from gnuradio.rfseek import rehearsal
+        with self.assertRaisesRegex(ValueError, "^sc = None: must be an rfseek.scenario"):
+            rehearsal.rehearsal_plan(None, "rtlsdr")
 
     def test_no_beacon_process_is_said_and_fails(self):
         # Nobody serves the address: the receiver says so while it waits, and a run that

@@ -335,6 +335,22 @@ ROWS = [
      lambda tc: [program([sys.executable, os.path.join(SOURCE, "apps", a)] + args, w)(tc)
                  for a, args, w in (("rfseek-soak", ["--strategy", "nosuch"], "--strategy"),
                                     ("rfseek-bench-acquire", ["--seeds", "0"], "--seeds"))]),
+    ("programs", "`rfseek-estimator-study --seed -1`, `--snr-min nan`, `--snr-min 5 --snr-max 0`",
+     "one line naming the option, exit 2",
+     lambda tc: [program([os.path.join(BUILD, "apps", "rfseek-estimator-study")] + args, w)(tc)
+                 for args, w in ((["--seed", "-1"], "--seed"), (["--snr-min", "nan"], "--snr-min"),
+                                 (["--snr-min", "5", "--snr-max", "0"], "--snr-max"))]),
+    ("parameters", "`rx_plan` / `rehearsal_plan` given None, a string or NaN where a number or a scenario goes",
+     "ValueError naming the argument (`qa_radios`, `qa_rehearsal`)",
+     lambda tc: [raises(lambda: rfseek.rx_plan("usrp_b2xx", out_rate=None), "^out_rate = None")(tc),
+                 raises(lambda: rfseek.rx_plan("usrp_b2xx", "2.4G"), "^freq = ")(tc),
+                 raises(lambda: __import__("gnuradio.rfseek.rehearsal", fromlist=["x"])
+                        .rehearsal_plan(None, "rtlsdr"), "^sc = None")(tc)]),
+    ("parameters", "`plots.sweep_plot` and the other study figures given one run's result, a path, or a study without `--sweep`",
+     "ValueError saying what they take (`qa_montecarlo`)",
+     lambda tc: [raises(lambda: __import__("gnuradio.rfseek.plots", fromlist=["x"])
+                        .sweep_plot(bad), "rfseek-montecarlo's JSON")(tc)
+                 for bad in ("study.json", None, {"rows": []})]),
 ]
 
 

@@ -67,6 +67,19 @@ class qa_turn_bound(gr_unittest.TestCase):
             self.assertEqual(turn_bound.main(["--set", "bogus=1", "--runs", "1"]), 2)
         self.assertIn("bogus", err.getvalue())
 
+    def test_a_speed_where_no_run_arrives_reads_as_a_dash(self):
+        # Every run capped: no mean to print, the row says "-" and counts them all.
+        import contextlib
+        import io
+        import unittest.mock
+        out = io.StringIO()
+        with unittest.mock.patch.object(turn_bound, "flight_ratio",
+                                        lambda sc: float("nan")), \
+                contextlib.redirect_stdout(out):
+            self.assertEqual(turn_bound.main(["--speeds", "10", "--runs", "2"]), 0)
+        self.assertIn("| 10 | - | - | 2 |", out.getvalue())
+        self.assertNotIn("nan", out.getvalue())
+
 
 if __name__ == "__main__":
     gr_unittest.run(qa_turn_bound)

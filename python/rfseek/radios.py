@@ -122,6 +122,19 @@ class rx_settings:
     band_hz: tuple          # (min, max) search band around the beacon; (0, 0): whole
 
 
+def _finite(name, value, low=-math.inf):
+    """`value` as a finite float >= low; ValueError naming `name` otherwise (None, a
+    string, NaN or infinity included)."""
+    try:
+        x = float(value)
+    except (TypeError, ValueError):
+        x = math.nan
+    if not (math.isfinite(x) and x >= low):
+        raise ValueError("%s = %r: must be a finite number%s"
+                         % (name, value, "" if low == -math.inf else " >= %g" % low))
+    return x
+
+
 def rx_plan(family, freq_hz=2.4e9, out_rate=100e3, device_rate=None, lo_offset_hz=None,
             beacon_ppm=2.0, max_speed_mps=30.0):
     """Settings for receiving a beacon at `freq_hz` with `family` and measuring it at
@@ -130,20 +143,24 @@ def rx_plan(family, freq_hz=2.4e9, out_rate=100e3, device_rate=None, lo_offset_h
     `max_speed_mps`, plus 1 kHz; the whole band when that is wider than 0.9 x out_rate.
     Raises ValueError naming the parameter when the device cannot do it."""
     r = radio_for(family)
-    if not (math.isfinite(freq_hz) and r.tunes(freq_hz)):
+    freq_hz = _finite("freq", freq_hz)
+    out_rate = _finite("out_rate", out_rate)
+    beacon_ppm = _finite("beacon_ppm", beacon_ppm)
+    max_speed_mps = _finite("max_speed_mps", max_speed_mps, 0.0)
+    if not r.tunes(freq_hz):
         raise ValueError("freq = %.6g Hz: the %s tunes %.6g-%.6g Hz"
                          % (freq_hz, r.label, r.tune_hz[0], r.tune_hz[1]))
-    rate = r.rx_rate if device_rate is None else float(device_rate)
+    rate = r.rx_rate if device_rate is None else _finite("device_rate", device_rate)
     if not r.accepts_rate(rate):
         raise ValueError("device_rate = %.6g S/s: the %s accepts %s" % (
             rate, r.label, " or ".join("%.6g-%.6g" % lh for lh in r.rx_rates)))
-    if not (out_rate > 0 and math.isfinite(out_rate)):
+    if not out_rate > 0:
         raise ValueError("out_rate = %r: must be > 0" % out_rate)
     dec = int(round(rate / out_rate))
     if dec < 1 or abs(dec * out_rate - rate) > 1e-6 * rate:
         raise ValueError("out_rate = %.6g S/s: must divide the device rate %.6g S/s by an "
                          "integer" % (out_rate, rate))
-    lo = r.lo_offset_hz if lo_offset_hz is None else float(lo_offset_hz)
+    lo = r.lo_offset_hz if lo_offset_hz is None else _finite("lo_offset", lo_offset_hz)
     if not r.tunes(freq_hz + lo):
         raise ValueError("lo_offset = %.6g Hz: puts the tuned centre outside the %s's "
                          "%.6g-%.6g Hz" % (lo, r.label, r.tune_hz[0], r.tune_hz[1]))

@@ -29,6 +29,8 @@ from .radios import radio_rx_chain, rx_plan, sim_radio
 
 def rehearsal_plan(sc, family, lo_offset=None, device_rate=None):
     """rx_plan for the world `sc` (its carrier, its rate as the estimator's)."""
+    if not (hasattr(sc, "carrier_hz") and hasattr(sc, "samp_rate_hz")):
+        raise ValueError("sc = %r: must be an rfseek.scenario" % (sc,))
     try:
         return rx_plan(family, sc.carrier_hz, sc.samp_rate_hz, device_rate, lo_offset)
     except ValueError as e:

@@ -42,6 +42,24 @@ void ground_track_guidance::reset()
     d_scatter = SCATTER_PRIOR * SCATTER_PRIOR;
 }
 
+double ground_track_guidance::forecast_crab_rad(double bearing_rad) const
+{
+    if (!(d_cfg.speed_mps > 0.0) || !std::isfinite(bearing_rad))
+        return 0.0;
+    // sin c = -w_perp / v, w_perp the forecast across the line of sight (left +).
+    const double w_perp = -d_cfg.forecast_east_mps * std::sin(bearing_rad) +
+                          d_cfg.forecast_north_mps * std::cos(bearing_rad);
+    return std::asin(std::clamp(-w_perp / d_cfg.speed_mps, -1.0, 1.0));
+}
+
+double ground_track_guidance::total(double bearing_rad) const
+{
+    if (!(d_cfg.speed_mps > 0.0))
+        return d_crab;
+    return std::clamp(
+        forecast_crab_rad(bearing_rad) + d_crab, -d_cfg.max_crab_rad, d_cfg.max_crab_rad);
+}
+
 double ground_track_guidance::bearing_rate_std() const
 {
     return d_started ? std::sqrt(std::max(d_prr, 0.0)) : RATE_PRIOR;
@@ -50,7 +68,7 @@ double ground_track_guidance::bearing_rate_std() const
 double ground_track_guidance::update(double t_s, double bearing_rad, double sigma_rad)
 {
     if (!std::isfinite(t_s) || !std::isfinite(bearing_rad))
-        return d_crab;
+        return crab_rad();
     const double sigma =
         std::isfinite(sigma_rad) ? std::max(sigma_rad, MIN_SIGMA) : 10.0 * MIN_SIGMA;
     if (d_started && t_s - d_t > MAX_GAP_S)
@@ -65,7 +83,7 @@ double ground_track_guidance::update(double t_s, double bearing_rad, double sigm
             d_prr = RATE_PRIOR * RATE_PRIOR;
             d_t = t_s;
         }
-        return d_crab;
+        return crab_rad();
     }
     // Predict: the rate is a random walk, the bearing its integral.
     const double dt = t_s - d_t;
@@ -98,9 +116,13 @@ double ground_track_guidance::update(double t_s, double bearing_rad, double sigm
         std::abs(d_r) < NEAR_RATE) {
         const double step = std::clamp(
             d_cfg.gain * d_r * dt, -d_cfg.max_crab_rate * dt, d_cfg.max_crab_rate * dt);
-        d_crab = std::clamp(d_crab + step, -d_cfg.max_crab_rad, d_cfg.max_crab_rad);
+        // The limit holds for the crab flown (forecast's + learned): a learned crab
+        // beyond it would wind up unseen.
+        const double cf = forecast_crab_rad(d_b);
+        d_crab =
+            std::clamp(d_crab + step, -d_cfg.max_crab_rad - cf, d_cfg.max_crab_rad - cf);
     }
-    return d_crab;
+    return crab_rad();
 }
 
 } // namespace rfseek

@@ -21,6 +21,9 @@
  * deviations, so calm air leaves it at zero, and holds where the bearing turns faster
  * than 1 deg/s (a few hundred metres from the emitter, where the filter's lag would make
  * it swing). Bearings more than 30 s apart (a loiter, an outage) restart the filter.
+ * With a wind forecast (the operator's, optional) the crab starts from the forecast's
+ * wind triangle at the filtered bearing and the law learns only what the forecast
+ * missed.
  * Internal to the library; unit-tested against the wind triangle in
  * lib/qa/qa_ground_track.cc.
  */
@@ -39,6 +42,12 @@ struct ground_track_config {
     double gate = 1.0;             //!< rate / std beyond which the crab moves
     double rate_walk = 5.0e-5;     //!< bearing-rate random walk (rad/s per sqrt(s))
     double max_crab_rate = 0.0175; //!< |c'| limit (rad/s; 1 deg/s)
+    //! A wind forecast (m/s toward east and north in the bearing's frame) and the
+    //! airspeed it is flown at: the crab starts from the forecast's wind triangle at
+    //! the filtered bearing, and the law adapts only the remainder. speed_mps 0: none.
+    double forecast_east_mps = 0.0;
+    double forecast_north_mps = 0.0;
+    double speed_mps = 0.0;
 };
 
 class RFSEEK_API ground_track_guidance
@@ -54,7 +63,12 @@ public:
      */
     double update(double t_s, double bearing_rad, double sigma_rad);
 
-    double crab_rad() const { return d_crab; }
+    //! The crab to fly now: the forecast's at the filtered bearing plus the learned one.
+    double crab_rad() const { return d_started ? total(d_b) : d_crab; }
+    //! The crab the law has learned (the whole crab without a forecast).
+    double learned_crab_rad() const { return d_crab; }
+    //! The wind triangle's crab for the forecast at bearing b (0 without a forecast).
+    double forecast_crab_rad(double bearing_rad) const;
     double bearing_rad() const { return d_b; }
     double bearing_rate_rad_per_s() const { return d_r; }
     double bearing_rate_std() const;
@@ -64,6 +78,8 @@ public:
     void reset();
 
 private:
+    double total(double bearing_rad) const;
+
     ground_track_config d_cfg;
     bool d_started = false;
     double d_t = 0.0, d_b = 0.0, d_r = 0.0;

@@ -120,6 +120,9 @@ const std::vector<field>& fields()
         RFSEEK_FIELD(wind_veer_rad_per_s, kind::real),
         RFSEEK_FIELD(airspeed_error_mps, kind::real),
         RFSEEK_FIELD(altimeter_error_m, kind::real),
+        RFSEEK_FIELD(wind_forecast, kind::boolean),
+        RFSEEK_FIELD(wind_forecast_speed_error_mps, kind::real),
+        RFSEEK_FIELD(wind_forecast_direction_error_rad, kind::real),
         RFSEEK_FIELD(success_radius_m, kind::real),
         RFSEEK_FIELD(flight_cap_m, kind::optional_real),
         RFSEEK_FIELD(self_arrival, kind::boolean),
@@ -232,6 +235,19 @@ void scenario::validate() const
             altimeter_error_m,
             "in [-1e4, 1e4] m with altitude_m + altimeter_error_m >= 0 (the altitude "
             "the vehicle believes)");
+    require_range("wind_forecast_direction_error_rad",
+                  wind_forecast_direction_error_rad,
+                  -M_PI,
+                  M_PI);
+    require_finite("wind_forecast_speed_error_mps", wind_forecast_speed_error_mps);
+    if (wind_forecast) {
+        const double forecast = wind_speed_mps + wind_forecast_speed_error_mps;
+        if (!(forecast >= 0.0 && forecast < speed_mps + airspeed_error_mps))
+            bad("wind_forecast_speed_error_mps",
+                wind_forecast_speed_error_mps,
+                "such that the forecast's speed, wind_speed_mps + this, is in [0, the "
+                "believed airspeed)");
+    }
     require_range("success_radius_m", success_radius_m, 0.0, initial_distance_m);
     if (flight_cap_m)
         require_positive("flight_cap_m", *flight_cap_m);

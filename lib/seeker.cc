@@ -29,6 +29,12 @@ namespace {
                                 ": must be " + range);
 }
 
+void require_finite_field(const char* field, double v)
+{
+    if (!std::isfinite(v))
+        bad(field, v, "a finite number");
+}
+
 } // namespace
 
 double seeker_config::max_doppler_hz() const
@@ -77,6 +83,14 @@ void validate_adaptive(const seeker_config& c)
         bad("ground_track_rate_walk",
             c.ground_track_rate_walk,
             "in (0, 1] rad/s/sqrt(s)");
+    require_finite_field("wind_forecast_east_mps", c.wind_forecast_east_mps);
+    require_finite_field("wind_forecast_north_mps", c.wind_forecast_north_mps);
+    if (!(std::hypot(c.wind_forecast_east_mps, c.wind_forecast_north_mps) < c.speed_mps))
+        bad("wind_forecast_east_mps",
+            c.wind_forecast_east_mps,
+            "such that the forecast's speed, with wind_forecast_north_mps = " +
+                std::to_string(c.wind_forecast_north_mps) + ", is below speed_mps (" +
+                std::to_string(c.speed_mps) + " m/s)");
 }
 
 // The constants of arrival without truth and of the emitter locator.
@@ -262,6 +276,8 @@ std::vector<std::string> seeker_config::keys()
              "ground_track_max_crab_deg",
              "ground_track_gate",
              "ground_track_rate_walk",
+             "wind_forecast_east_mps",
+             "wind_forecast_north_mps",
              "paper_ground_track",
              "paper_ground_track_gain",
              "self_arrival",
@@ -359,6 +375,8 @@ const std::map<std::string, seeker_setting>& settings()
         RFSEEK_SETTING(ground_track_max_crab_deg, ground_track_max_crab_rad, degrees),
         RFSEEK_SETTING(ground_track_gate, ground_track_gate, real),
         RFSEEK_SETTING(ground_track_rate_walk, ground_track_rate_walk, real),
+        RFSEEK_SETTING(wind_forecast_east_mps, wind_forecast_east_mps, real),
+        RFSEEK_SETTING(wind_forecast_north_mps, wind_forecast_north_mps, real),
         RFSEEK_SETTING(paper_ground_track, paper_ground_track, boolean),
         RFSEEK_SETTING(paper_ground_track_gain, paper_ground_track_gain, real),
         RFSEEK_SETTING(self_arrival, self_arrival, boolean),

@@ -65,6 +65,11 @@ inline ground_track_guidance make_ground_track(const seeker_config& cfg, double 
     g.max_crab_rad = cfg.ground_track_max_crab_rad;
     g.gate = cfg.ground_track_gate;
     g.rate_walk = cfg.ground_track_rate_walk;
+    if (cfg.wind_forecast_east_mps != 0.0 || cfg.wind_forecast_north_mps != 0.0) {
+        g.forecast_east_mps = cfg.wind_forecast_east_mps;
+        g.forecast_north_mps = cfg.wind_forecast_north_mps;
+        g.speed_mps = cfg.speed_mps;
+    }
     return ground_track_guidance(g);
 }
 

@@ -79,6 +79,12 @@ struct RFSEEK_API scenario {
     // simulation::seeker_for hands the seeker the truth plus these errors.
     double airspeed_error_mps = 0.0; //!< believed airspeed - speed_mps
     double altimeter_error_m = 0.0;  //!< believed altitude - altitude_m
+    //! The seeker is handed a wind forecast (seeker_config::wind_forecast_*): the run's
+    //! mean wind at the start, its speed off by wind_forecast_speed_error_mps and its
+    //! direction by wind_forecast_direction_error_rad (false: no forecast).
+    bool wind_forecast = false;
+    double wind_forecast_speed_error_mps = 0.0;     //!< forecast speed - true (m/s)
+    double wind_forecast_direction_error_rad = 0.0; //!< forecast direction - true (rad)
     // Run
     double success_radius_m = 200.0;    //!< d_v
     std::optional<double> flight_cap_m; //!< default: world::flight_cap_m()

@@ -106,6 +106,12 @@ struct RFSEEK_API seeker_config {
     double ground_track_gate = 1.0;
     //! Random walk of the bearing rate in its Kalman filter (rad/s per sqrt(s)).
     double ground_track_rate_walk = 5.0e-5;
+    //! An optional wind forecast for the ground track (m/s toward east and north in the
+    //! compass frame; the operator's, e.g. an anemometer at launch; both 0: none). The
+    //! crab starts from the forecast's wind triangle at the bearing and the law learns
+    //! what the forecast missed. Its speed must be below speed_mps.
+    double wind_forecast_east_mps = 0.0;
+    double wind_forecast_north_mps = 0.0;
     //! `paper` and `paper_no_circle`: fly Stage 2's probes around theta plus the same
     //! crab (eq. 5 then measures the bearing around the heading flown); false: the
     //! paper's Stage 2, an air heading at theta.

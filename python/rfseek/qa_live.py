@@ -107,6 +107,22 @@ class qa_live(gr_unittest.TestCase):
             p = live("--source", "file", "--file", rec, "--set", bad)
             self.assertEqual(p.returncode, 2, p.stderr)
             self.assertIn(word, p.stderr)
+        # --wind-from: the direction the wind blows from (compass, as weather reports
+        # give it) and its speed become the ground track's forecast in the module's
+        # frame (from 270 deg, the west: toward +east); bad text or a wind as fast as
+        # the airspeed is one line, exit 2.
+        p = live("--source", "file", "--file", rec, "--strategy", "adaptive",
+                 "--wind-from", "270,6")
+        self.assertEqual(p.returncode, 0, p.stderr)
+        self.assertIn("wind forecast: 6.0 m/s toward east, 0.0 m/s toward north", p.stderr)
+        p = live("--source", "file", "--file", rec, "--wind-from", "0,4")
+        self.assertIn("wind forecast: 0.0 m/s toward east, -4.0 m/s toward north",
+                      p.stderr)
+        for bad, word in (("west", "--wind-from"), ("90,12", "below speed_mps")):
+            p = live("--source", "file", "--file", rec, "--wind-from", bad)
+            self.assertEqual(p.returncode, 2, p.stderr)
+            self.assertIn(word, p.stderr)
+            self.assertNotIn("Traceback", p.stderr)
         # Radio settings the simulator would ignore are refused, naming them.
         p = live("--source", "sim", "--fast", "--freq", "915e6", "--gain", "nan")
         self.assertEqual(p.returncode, 2, p.stderr)

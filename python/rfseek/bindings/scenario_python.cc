@@ -4,7 +4,7 @@
  */
 
 /* BINDTOOL_HEADER_FILE(scenario.h) */
-/* BINDTOOL_HEADER_FILE_HASH(5947be5c176a98960966fb78eb7c4564) */
+/* BINDTOOL_HEADER_FILE_HASH(7ad6653df053e7acb33af2989f10ca2d) */
 
 #include "kwargs.h"
 #include <gr-rfseek/scenario.h>
@@ -154,6 +154,11 @@ void bind_scenario(py::module& m)
        "airspeed the vehicle believes minus the one it flies (m/s; seeker_for adds it)");
     RW(altimeter_error_m,
        "altitude the vehicle believes minus the true one (m; seeker_for adds it)");
+    RW(wind_forecast,
+       "hand the seeker a wind forecast: the run's mean wind at the start, off by the "
+       "two errors below");
+    RW(wind_forecast_speed_error_mps, "forecast wind speed - true (m/s)");
+    RW(wind_forecast_direction_error_rad, "forecast wind direction - true (rad)");
     RW(success_radius_m, "d_v (m)");
     RW(flight_cap_m,
        "flight cap, air metres; None = 4 x the straight ground line's air distance, "

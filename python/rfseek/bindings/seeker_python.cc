@@ -4,7 +4,7 @@
  */
 
 /* BINDTOOL_HEADER_FILE(seeker.h) */
-/* BINDTOOL_HEADER_FILE_HASH(4d64ac56090df358ca6d3044a7e722bc) */
+/* BINDTOOL_HEADER_FILE_HASH(89772681fa163abf4df3eaaeb080b284) */
 
 #include "kwargs.h"
 #include <gr-rfseek/seeker.h>
@@ -157,6 +157,12 @@ void bind_seeker_config(py::module& m)
        "ground track: the crab moves while the bearing rate exceeds this many std");
     RW(ground_track_rate_walk,
        "ground track: random walk of the bearing rate in its filter (rad/s/sqrt(s))");
+    RW(wind_forecast_east_mps,
+       "ground track: wind forecast toward east (m/s, compass frame; with north 0: "
+       "none)");
+    RW(wind_forecast_north_mps,
+       "ground track: wind forecast toward north (m/s, compass frame; with east 0: "
+       "none)");
     RW(paper_ground_track,
        "paper, paper_no_circle: fly Stage 2's probes around theta plus the ground-track "
        "crab (off: the paper's air heading at theta)");

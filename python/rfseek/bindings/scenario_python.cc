@@ -4,7 +4,7 @@
  */
 
 /* BINDTOOL_HEADER_FILE(scenario.h) */
-/* BINDTOOL_HEADER_FILE_HASH(7ad6653df053e7acb33af2989f10ca2d) */
+/* BINDTOOL_HEADER_FILE_HASH(6a40c04fd3a6ba37c559e7b6f42f9bae) */
 
 #include "kwargs.h"
 #include <gr-rfseek/scenario.h>

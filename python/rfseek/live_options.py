@@ -1,0 +1,63 @@
+#
+# Copyright 2026 gr-rfseek authors.
+# SPDX-License-Identifier: GPL-3.0-or-later
+#
+"""rfseek-live's checks of what it is asked before any device is opened: radio settings
+that a source would ignore, and where each --set KEY=VALUE goes."""
+
+
+def refuse_unused(args, serving=False):
+    """Radio settings given where they would be ignored: a ValueError naming them, not a
+    run that silently differs from what was asked. serving: the --zmq-serve process."""
+    radio = {"--freq": args.freq, "--gain": args.gain, "--rate": args.rate,
+             "--device": args.device or None}
+    plan = {"--device-rate": args.device_rate, "--lo-offset": args.lo_offset}
+    if serving:
+        given, why = dict(radio, **plan), (
+            "the served radio follows the table's plan for --radio, and the world's "
+            "carrier and rate are scenario fields (--set carrier_hz=... --set "
+            "samp_rate_hz=...)")
+    elif args.source == "sim":
+        given, why = (radio if args.radio else dict(radio, **plan)), (
+            "the simulated world's carrier and sample rate are scenario fields (--set "
+            "carrier_hz=... --set samp_rate_hz=...)%s" % (
+                "" if args.radio else "; --device-rate and --lo-offset need --radio FAMILY"))
+    elif args.source == "file":
+        given, why = dict(radio, **plan), "the recording's metadata gives its carrier and rate"
+    elif args.source == "zmq":
+        given = {"--gain": args.gain, "--device": args.device or None, **plan}
+        why = "the radio's settings belong to the --zmq-serve process"
+    else:
+        return
+    unused = [flag for flag, value in given.items() if value is not None]
+    if unused:
+        raise ValueError("%s: not used %s: %s" % (
+            ", ".join(unused), "by --zmq-serve" if serving else
+            "with --source %s" % args.source, why))
+
+
+def split_sets(args, rfseek):
+    """The --set KEY=VALUE items as (scenario items, seeker (key, value) pairs). With a
+    simulated world a scenario key goes to the scenario (the seeker copies the fields
+    they share); any other seeker key to the seeker configuration, with any source. A
+    key of neither, or a scenario-only key without a simulated world, is a ValueError."""
+    scen_keys, seek_keys = set(rfseek.scenario.keys()), set(rfseek.seeker_config.keys())
+    simulated = args.source == "sim"
+    scen, seek = [], []
+    for kv in args.set:
+        key, sep, value = kv.partition("=")
+        key = key.strip()
+        if not sep:
+            raise ValueError("--set expects KEY=VALUE, got '%s'" % kv)
+        if simulated and key in scen_keys:
+            scen.append(kv)
+        elif key in seek_keys:
+            seek.append((key, value.strip()))
+        elif key in scen_keys:
+            raise ValueError("--set %s: a field of the simulated world, only with --source "
+                             "sim" % key)
+        else:
+            raise ValueError("--set %s: unknown: neither a seeker constant "
+                             "(rfseek.seeker_config.keys()) nor a scenario field "
+                             "(rfseek.scenario.keys(), with --source sim)" % key)
+    return scen, seek

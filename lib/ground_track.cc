@@ -116,12 +116,13 @@ double ground_track_guidance::update(double t_s, double bearing_rad, double sigm
         std::abs(d_r) < NEAR_RATE) {
         const double step = std::clamp(
             d_cfg.gain * d_r * dt, -d_cfg.max_crab_rate * dt, d_cfg.max_crab_rate * dt);
-        // The limit holds for the crab flown (forecast's + learned): a learned crab
-        // beyond it would wind up unseen.
-        const double cf = forecast_crab_rad(d_b);
-        d_crab =
-            std::clamp(d_crab + step, -d_cfg.max_crab_rad - cf, d_cfg.max_crab_rad - cf);
+        d_crab += step;
     }
+    // The limit holds for the crab flown (forecast's + learned), at every bearing: a
+    // learned crab beyond it would wind up unseen (without a forecast, |d_crab| <= max
+    // as before).
+    const double cf = forecast_crab_rad(d_b);
+    d_crab = std::clamp(d_crab, -d_cfg.max_crab_rad - cf, d_cfg.max_crab_rad - cf);
     return crab_rad();
 }
 

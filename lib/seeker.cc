@@ -14,6 +14,7 @@
 #include <gr-rfseek/world.h>
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <map>
 #include <stdexcept>
@@ -27,6 +28,13 @@ namespace {
 {
     throw std::invalid_argument("seeker_config." + field + " = " + std::to_string(v) +
                                 ": must be " + range);
+}
+
+std::string short_number(double v)
+{
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.6g", v);
+    return buf;
 }
 
 void require_finite_field(const char* field, double v)
@@ -85,12 +93,15 @@ void validate_adaptive(const seeker_config& c)
             "in (0, 1] rad/s/sqrt(s)");
     require_finite_field("wind_forecast_east_mps", c.wind_forecast_east_mps);
     require_finite_field("wind_forecast_north_mps", c.wind_forecast_north_mps);
-    if (!(std::hypot(c.wind_forecast_east_mps, c.wind_forecast_north_mps) < c.speed_mps))
-        bad("wind_forecast_east_mps",
-            c.wind_forecast_east_mps,
-            "such that the forecast's speed, with wind_forecast_north_mps = " +
-                std::to_string(c.wind_forecast_north_mps) + ", is below speed_mps (" +
-                std::to_string(c.speed_mps) + " m/s)");
+    const double forecast =
+        std::hypot(c.wind_forecast_east_mps, c.wind_forecast_north_mps);
+    if (!(forecast < c.speed_mps))
+        throw std::invalid_argument(
+            "seeker_config.wind_forecast_east_mps, wind_forecast_north_mps = " +
+            short_number(c.wind_forecast_east_mps) + ", " +
+            short_number(c.wind_forecast_north_mps) + ": the forecast's speed, " +
+            short_number(forecast) + " m/s, must be below speed_mps (" +
+            short_number(c.speed_mps) + " m/s)");
 }
 
 // The constants of arrival without truth and of the emitter locator.

@@ -73,13 +73,12 @@ seeker_config simulation::seeker_for(const scenario& sc, const std::string& stra
     if (sc.wind_forecast) {
         // The run's mean wind at the start (its direction drawn from the seed when not
         // given), as a forecast off by the scenario's errors.
+        // (scenario::validate keeps the forecast's speed in [0, the believed airspeed).)
         const world w(sc);
-        const double speed = std::hypot(w.wind_east_mps(), w.wind_north_mps()) +
-                             sc.wind_forecast_speed_error_mps;
-        const double to = std::atan2(w.wind_north_mps(), w.wind_east_mps()) +
-                          sc.wind_forecast_direction_error_rad;
-        c.wind_forecast_east_mps = std::max(speed, 0.0) * std::cos(to);
-        c.wind_forecast_north_mps = std::max(speed, 0.0) * std::sin(to);
+        const double speed = sc.wind_speed_mps + sc.wind_forecast_speed_error_mps;
+        const double to = w.start_wind_to_rad() + sc.wind_forecast_direction_error_rad;
+        c.wind_forecast_east_mps = speed * std::cos(to);
+        c.wind_forecast_north_mps = speed * std::sin(to);
     }
     return c;
 }

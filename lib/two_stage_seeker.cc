@@ -190,7 +190,7 @@ private:
                                             std::sin(world::wrap(bearing - d_theta)));
         if (std::abs(theta_err) > CRAB_RESET_RAD) {
             d_track.reset();
-            d_crab = 0.0;
+            d_crab = d_track.forecast_crab_rad(bearing); // 0 without a forecast
         } else if (in_range) {
             // No standard error is passed (the filter's floor): the scatter its own
             // innovations show sets the bearing's variance, as gusts dominate it.

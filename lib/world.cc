@@ -80,6 +80,7 @@ world::world(const scenario& sc) : d_sc(sc)
     if (d_sc.wind_speed_mps > 0.0 || d_sc.wind_gust_mps > 0.0) {
         rng w(d_sc.seed, STREAM_WIND, 0);
         const double to = d_sc.wind_to_rad.value_or(w.uniform(-M_PI, M_PI));
+        d_wind_to0 = to;
         d_wind_x = d_sc.wind_speed_mps * std::cos(to);
         d_wind_y = d_sc.wind_speed_mps * std::sin(to);
         d_gust_x = d_sc.wind_gust_mps * w.normal(); // stationary start

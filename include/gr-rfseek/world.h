@@ -85,6 +85,9 @@ public:
     //! The mean wind now (without gusts), m/s.
     double wind_east_mps() const { return d_wind_x; }
     double wind_north_mps() const { return d_wind_y; }
+    //! Where the mean wind blew toward at the start (rad; drawn from the seed when the
+    //! scenario gives none, even at 0 m/s; 0 when neither wind nor gusts are set).
+    double start_wind_to_rad() const { return d_wind_to0; }
     //! Bearing from the UAV toward the emitter.
     double bearing_to_emitter_rad() const;
     //! Carrier offset f_o at the start of this slot, and its linear drift rate a.
@@ -174,6 +177,7 @@ private:
     double d_cfo_hz = 0.0, d_cfo_drift = 0.0, d_cfo_phase = 0.0;
     double d_amp = 0.0, d_noise_power = 0.0;
     double d_wind_x = 0.0, d_wind_y = 0.0; // mean wind
+    double d_wind_to0 = 0.0;               // its direction at the start
     double d_straight_air = 0.0;
     double d_cap = 0.0;
     double d_gust_x = 0.0, d_gust_y = 0.0; // gusts (Gauss-Markov), this slot

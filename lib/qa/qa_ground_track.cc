@@ -185,12 +185,41 @@ TEST(ground_track, a_wrong_forecast_is_learned_back_to_the_triangle)
                                 { w * std::sin(off), w * std::cos(off) },
                                 { -w * std::sin(off), w * std::cos(off) } }) {
         const flight f = fly(16000.0, 0.0, w, 300.0, 0.0, with_forecast(e, n));
-        EXPECT_NE(f.first_crab, std::asin(w / V)); // starts off the triangle
+        EXPECT_GT(std::abs(f.first_crab - std::asin(w / V)), 4.0 * DEG); // starts off
         // Within the rate gate's residual: the crab stops where the bearing rate falls
         // below one standard deviation of its estimate, about 1 deg off at 300 m.
         EXPECT_NEAR(f.crab, std::asin(-f.wind_perp / V), 1.5 * DEG) << e << " " << n;
         EXPECT_NEAR(wrap(f.track - f.bearing), 0.0, 1.5 * DEG) << e << " " << n;
     }
+}
+
+TEST(ground_track, a_forecast_beyond_the_limit_does_not_wind_the_learned_crab_up)
+{
+    // 9 m/s across at the bearing pi: the forecast's triangle is 64 deg, beyond the
+    // 50 deg limit. The bearing turns so that the law pushes the crab further out for
+    // 200 s, then back. The crab flown (forecast's + learned) never passes the limit,
+    // and once the bearing turns back it leaves the limit within 120 s; a learned crab
+    // wound up behind the limit would hold it there for minutes (14 deg to unwind
+    // before the flown crab moves, at the law's rate here about 0.03 deg/s).
+    ground_track_guidance g(with_forecast(0.0, 9.0));
+    const double max = ground_track_config().max_crab_rad;
+    EXPECT_NEAR(g.forecast_crab_rad(M_PI), std::asin(0.9), 1e-12);
+    double t = 0.0, b = M_PI;
+    for (int k = 0; k <= 50; ++k) {
+        t = 4.0 * k;
+        b = M_PI + 0.0005 * t;
+        EXPECT_LE(g.update(t, b, 0.01), max + 1e-12);
+        if (k > 0) // from the first step on, the learned part keeps the sum in
+            EXPECT_LE(g.forecast_crab_rad(g.bearing_rad()) + g.learned_crab_rad(),
+                      max + 1e-12)
+                << t;
+    }
+    EXPECT_NEAR(g.crab_rad(), max, 0.5 * DEG);
+    const double t0 = t, b0 = b;
+    double crab = max;
+    for (int k = 1; 4.0 * k <= 120.0; ++k)
+        crab = g.update(t0 + 4.0 * k, b0 - 0.0005 * 4.0 * k, 0.01);
+    EXPECT_LT(crab, max - 1.0 * DEG);
 }
 
 TEST(ground_track, the_forecast_is_checked_and_handed_over_by_the_simulation)
@@ -199,7 +228,10 @@ TEST(ground_track, the_forecast_is_checked_and_handed_over_by_the_simulation)
     for (const auto& [e, n, field] :
          { std::tuple<double, double, const char*>{ 10.0, 0.0, "wind_forecast_east_mps" },
            { 0.0, NAN, "wind_forecast_north_mps" },
-           { 8.0, 6.0, "wind_forecast_east_mps" } }) {
+           { 8.0, 6.0, "wind_forecast_east_mps" },
+           { 0.0,
+             12.0,
+             "wind_forecast_north_mps = 0, 12: the forecast's speed, 12 m/s" } }) {
         seeker_config c;
         c.wind_forecast_east_mps = e;
         c.wind_forecast_north_mps = n;
@@ -244,6 +276,18 @@ TEST(ground_track, the_forecast_is_checked_and_handed_over_by_the_simulation)
                   std::string::npos)
             << x.what();
     }
+    // In calm air with gusts the direction is still the one drawn from the seed (the
+    // forecast of a wind that is not there points where the world drew it).
+    scenario calm;
+    calm.set("wind_gust_mps", "1");
+    calm.set("seed", "14");
+    calm.set("wind_forecast", "true");
+    calm.set("wind_forecast_speed_error_mps", "2");
+    const double to = world(calm).start_wind_to_rad();
+    EXPECT_GT(std::abs(std::sin(to)), 0.5); // not only east or west (-0.68 here)
+    const seeker_config phantom = simulation::seeker_for(calm, "adaptive");
+    EXPECT_NEAR(phantom.wind_forecast_east_mps, 2.0 * std::cos(to), 1e-12);
+    EXPECT_NEAR(phantom.wind_forecast_north_mps, 2.0 * std::sin(to), 1e-12);
 }
 
 TEST(ground_track, head_and_tailwind_give_no_crab)

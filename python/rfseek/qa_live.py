@@ -115,11 +115,19 @@ class qa_live(gr_unittest.TestCase):
                  "--wind-from", "270,6")
         self.assertEqual(p.returncode, 0, p.stderr)
         self.assertIn("wind forecast: 6.0 m/s toward east, 0.0 m/s toward north", p.stderr)
-        p = live("--source", "file", "--file", rec, "--wind-from", "0,4")
-        self.assertIn("wind forecast: 0.0 m/s toward east, -4.0 m/s toward north",
-                      p.stderr)
-        for bad, word in (("west", "--wind-from"), ("90,12", "below speed_mps")):
-            p = live("--source", "file", "--file", rec, "--wind-from", bad)
+        for arg, want in (("0,4", "0.0 m/s toward east, -4.0 m/s toward north"),
+                          ("90,4", "-4.0 m/s toward east, 0.0 m/s toward north")):
+            p = live("--source", "file", "--file", rec, "--strategy", "adaptive",
+                     "--wind-from", arg)
+            self.assertEqual(p.returncode, 0, p.stderr)
+            self.assertIn("wind forecast: " + want, p.stderr)
+        # Refused: not a direction and speed; a wind as fast as --speed (before any
+        # device); a strategy that flies no ground track (the default `paper`).
+        for args, word in ((["--wind-from", "west"], "--wind-from"),
+                           (["--wind-from", "90,12"], "--wind-from: a wind of 12"),
+                           (["--wind-from", "90,4", "--strategy", "paper"],
+                            "--wind-from: used by the ground track only")):
+            p = live("--source", "file", "--file", rec, *args)
             self.assertEqual(p.returncode, 2, p.stderr)
             self.assertIn(word, p.stderr)
             self.assertNotIn("Traceback", p.stderr)

@@ -158,11 +158,11 @@ void bind_seeker_config(py::module& m)
     RW(ground_track_rate_walk,
        "ground track: random walk of the bearing rate in its filter (rad/s/sqrt(s))");
     RW(wind_forecast_east_mps,
-       "ground track: wind forecast toward east (m/s, compass frame; with north 0: "
-       "none)");
+       "ground track: wind forecast toward east (m/s, compass frame; both 0: no "
+       "forecast)");
     RW(wind_forecast_north_mps,
-       "ground track: wind forecast toward north (m/s, compass frame; with east 0: "
-       "none)");
+       "ground track: wind forecast toward north (m/s, compass frame; both 0: no "
+       "forecast)");
     RW(paper_ground_track,
        "paper, paper_no_circle: fly Stage 2's probes around theta plus the ground-track "
        "crab (off: the paper's air heading at theta)");

@@ -4,7 +4,7 @@
  */
 
 /* BINDTOOL_HEADER_FILE(world.h) */
-/* BINDTOOL_HEADER_FILE_HASH(29608c5abe2f02e54e1bb6883b981963) */
+/* BINDTOOL_HEADER_FILE_HASH(b05b3d6f15493c5032e7a466308a8447) */
 
 #include <gr-rfseek/world.h>
 #include <pybind11/complex.h>
@@ -160,6 +160,10 @@ void bind_world(py::module& m)
                 "wind_north_mps",
                 &world::wind_north_mps,
                 "The mean wind now, north component (m/s, without gusts).")
+            .def_property_readonly("start_wind_to_rad",
+                                   &world::start_wind_to_rad,
+                                   "Where the mean wind blew toward at the start (rad; "
+                                   "drawn from the seed when not given, even at 0 m/s).")
             .def_property_readonly("bearing_to_emitter_rad",
                                    &world::bearing_to_emitter_rad,
                                    "Bearing from the UAV toward the emitter.")

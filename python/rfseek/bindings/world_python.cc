@@ -94,6 +94,28 @@ void bind_scene_classes(py::module& m)
         .def_readonly("length_m", &path_state::length_m, "emitter -> (scatterer ->) UAV");
 }
 
+// The wind and the velocity over the ground.
+void bind_world_wind(py::class_<gr::rfseek::world>& w)
+{
+    using namespace gr::rfseek;
+    w.def_property_readonly("wind_east_mps",
+                            &world::wind_east_mps,
+                            "The mean wind now (without gusts), m/s.");
+    w.def_property_readonly("wind_north_mps",
+                            &world::wind_north_mps,
+                            "The mean wind now, north component (m/s, without gusts).");
+    w.def_property_readonly("start_wind_to_rad",
+                            &world::start_wind_to_rad,
+                            "Where the mean wind blew toward at the start (rad; "
+                            "drawn from the seed when not given, even at 0 m/s).");
+    w.def_property_readonly("ground_vx_mps",
+                            &world::ground_vx_mps,
+                            "Velocity over the ground (air velocity + wind), m/s.");
+    w.def_property_readonly("ground_vy_mps",
+                            &world::ground_vy_mps,
+                            "Velocity over the ground, north component (m/s).");
+}
+
 } // namespace
 
 void bind_world(py::module& m)
@@ -153,17 +175,6 @@ void bind_world(py::module& m)
                 "Air distance at which the run is capped: flight_cap_m, or 4 x "
                 "straight_air_m where that is longer than d - d_v (a headwind), else "
                 "4 (d - d_v).")
-            .def_property_readonly("wind_east_mps",
-                                   &world::wind_east_mps,
-                                   "The mean wind now (without gusts), m/s.")
-            .def_property_readonly(
-                "wind_north_mps",
-                &world::wind_north_mps,
-                "The mean wind now, north component (m/s, without gusts).")
-            .def_property_readonly("start_wind_to_rad",
-                                   &world::start_wind_to_rad,
-                                   "Where the mean wind blew toward at the start (rad; "
-                                   "drawn from the seed when not given, even at 0 m/s).")
             .def_property_readonly("bearing_to_emitter_rad",
                                    &world::bearing_to_emitter_rad,
                                    "Bearing from the UAV toward the emitter.")
@@ -182,12 +193,6 @@ void bind_world(py::module& m)
                 "slant_range_m",
                 &world::slant_range_m,
                 "Straight-line (3-D) distance to the emitter, altitude included.")
-            .def_property_readonly("ground_vx_mps",
-                                   &world::ground_vx_mps,
-                                   "Velocity over the ground (air velocity + wind), m/s.")
-            .def_property_readonly("ground_vy_mps",
-                                   &world::ground_vy_mps,
-                                   "Velocity over the ground, north component (m/s).")
             .def_property_readonly(
                 "compass_error_rad",
                 &world::compass_error_rad,
@@ -218,5 +223,6 @@ void bind_world(py::module& m)
                 "ended",
                 &world::ended,
                 "self_arrival: the vehicle declared the run over (end_run()).");
+    bind_world_wind(w);
     bind_world_methods(w);
 }

@@ -125,6 +125,18 @@ crab_flown crab_against_triangle(const run_result& r,
     return c;
 }
 
+// The reference world with its emitter due west (the line of sight along -x) and a
+// 6 m/s wind across it, toward +y (side 1) or -y (side -1).
+scenario crosswind(std::uint64_t seed, double side)
+{
+    scenario sc;
+    sc.seed = seed;
+    sc.start_angle_rad = 0.0;
+    sc.wind_speed_mps = 6.0;
+    sc.wind_to_rad = side * M_PI / 2;
+    return sc;
+}
+
 } // namespace
 
 TEST(ground_track, crosswind_from_either_side_gives_the_wind_triangle)
@@ -368,11 +380,7 @@ TEST(ground_track, paper_option_flies_the_wind_triangle)
 {
     for (const char* strategy : { "paper", "paper_no_circle" })
         for (double side : { 1.0, -1.0 }) {
-            scenario sc;
-            sc.seed = 21;
-            sc.start_angle_rad = 0.0;         // the line of sight points to -x
-            sc.wind_speed_mps = 6.0;          // 0.6 of the airspeed, across it
-            sc.wind_to_rad = side * M_PI / 2; // toward +y or -y
+            scenario sc = crosswind(21, side);
             seeker_config off = simulation::seeker_for(sc, strategy);
             seeker_config on = off;
             on.paper_ground_track = true;
@@ -410,11 +418,7 @@ TEST(ground_track, adaptive_with_a_forecast_crabs_from_the_start)
     // is shorter (observed on seed 21: 1.137 -> 1.010 and 1.120 -> 1.023; over the first
     // kilometre 0.0 deg from the triangle with the forecast, 36-37 deg without).
     for (double side : { 1.0, -1.0 }) {
-        scenario sc;
-        sc.seed = 21;
-        sc.start_angle_rad = 0.0;
-        sc.wind_speed_mps = 6.0;
-        sc.wind_to_rad = side * M_PI / 2;
+        scenario sc = crosswind(21, side);
         const run_result a =
             simulation(sc, simulation::seeker_for(sc, "adaptive")).run(true);
         sc.wind_forecast = true;
@@ -438,11 +442,7 @@ TEST(ground_track, paper_option_in_gusts)
     // shorter than without it (observed by 0.10-0.21 of the line).
     for (const char* strategy : { "paper", "paper_no_circle" })
         for (double side : { 1.0, -1.0 }) {
-            scenario sc;
-            sc.seed = 22;
-            sc.start_angle_rad = 0.0;
-            sc.wind_speed_mps = 6.0;
-            sc.wind_to_rad = side * M_PI / 2;
+            scenario sc = crosswind(22, side);
             sc.wind_gust_mps = 1.5;
             sc.wind_gust_tau_s = 5.0;
             seeker_config off = simulation::seeker_for(sc, strategy);

@@ -60,6 +60,16 @@ double ground_track_guidance::total(double bearing_rad) const
         forecast_crab_rad(bearing_rad) + d_crab, -d_cfg.max_crab_rad, d_cfg.max_crab_rad);
 }
 
+void ground_track_guidance::set_forecast(double east_mps,
+                                         double north_mps,
+                                         double speed_mps)
+{
+    const bool none = east_mps == 0.0 && north_mps == 0.0;
+    d_cfg.forecast_east_mps = none ? 0.0 : east_mps;
+    d_cfg.forecast_north_mps = none ? 0.0 : north_mps;
+    d_cfg.speed_mps = none ? 0.0 : speed_mps;
+}
+
 double ground_track_guidance::bearing_rate_std() const
 {
     return d_started ? std::sqrt(std::max(d_prr, 0.0)) : RATE_PRIOR;

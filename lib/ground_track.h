@@ -77,6 +77,9 @@ public:
     //! Forget everything, crab included.
     void reset();
 
+    //! A new forecast (both 0: none) at airspeed speed_mps; the learned crab is kept.
+    void set_forecast(double east_mps, double north_mps, double speed_mps);
+
 private:
     double total(double bearing_rad) const;
 

@@ -103,6 +103,14 @@ public:
     }
 
     const seeker_config& config() const override { return d_cfg; }
+    bool set_wind_forecast(double east_mps, double north_mps) override
+    {
+        if (!d_inner->set_wind_forecast(east_mps, north_mps))
+            return false;
+        d_cfg.wind_forecast_east_mps = east_mps;
+        d_cfg.wind_forecast_north_mps = north_mps;
+        return true;
+    }
     int stage() const override { return d_loitering ? 3 : d_inner->stage(); }
     double theta_est_rad() const override
     {

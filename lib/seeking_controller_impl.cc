@@ -297,6 +297,19 @@ void seeking_controller_impl::set_wait_for_heading(bool wait)
     d_wait_heading = wait;
 }
 
+void seeking_controller_impl::set_wind_forecast(double east_mps, double north_mps)
+{
+    gr::thread::scoped_lock lock(d_setlock);
+    seeker_config c = d_seeker->config();
+    c.wind_forecast_east_mps = east_mps;
+    c.wind_forecast_north_mps = north_mps;
+    c.validate(); // names the field and the airspeed
+    if (!d_seeker->set_wind_forecast(east_mps, north_mps))
+        d_logger->warn("set_wind_forecast: strategy {} flies no ground track here: the "
+                       "forecast is not used",
+                       c.strategy);
+}
+
 bool seeking_controller_impl::wait_for_heading() const
 {
     gr::thread::scoped_lock lock(setlock());

@@ -78,6 +78,15 @@ public:
     }
 
     const seeker_config& config() const override { return d_cfg; }
+    bool set_wind_forecast(double east_mps, double north_mps) override
+    {
+        if (!d_cfg.paper_ground_track)
+            return false;
+        d_cfg.wind_forecast_east_mps = east_mps;
+        d_cfg.wind_forecast_north_mps = north_mps;
+        d_track.set_forecast(east_mps, north_mps, d_cfg.speed_mps);
+        return true;
+    }
     int stage() const override { return d_stage; }
     double theta_est_rad() const override { return d_theta; }
     std::uint64_t updates() const override { return d_updates; }

@@ -235,6 +235,18 @@ public:
     virtual int stage() const = 0;
     virtual double theta_est_rad() const = 0;
     virtual std::uint64_t updates() const = 0; //!< Stage-2 updates applied
+    /*!
+     * A new wind forecast for the ground track, mid-flight (seeker_config::
+     * wind_forecast_east_mps / _north_mps; both 0: none). The crab learned so far is
+     * kept. Returns false, changing nothing, for a strategy that flies no ground track.
+     * The caller checks the values (seeking_controller::set_wind_forecast does).
+     */
+    virtual bool set_wind_forecast(double east_mps, double north_mps)
+    {
+        (void)east_mps;
+        (void)north_mps;
+        return false;
+    }
 };
 
 } // namespace rfseek

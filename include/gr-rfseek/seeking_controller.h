@@ -80,6 +80,15 @@ public:
     virtual bool wait_for_heading() const = 0;
     //! meas messages set aside while waiting for the first heading.
     virtual std::uint64_t waiting_count() const = 0;
+    /*!
+     * A new wind forecast for the ground track, mid-flight (m/s toward east and north in
+     * the compass frame; both 0: none; docs/seeker.md "A wind forecast"). The crab
+     * learned so far is kept; config() shows the new values. Throws
+     * std::invalid_argument (Python: ValueError) for a non-finite value or a speed not
+     * below the airspeed; with a strategy that flies no ground track it logs a warning
+     * and changes nothing.
+     */
+    virtual void set_wind_forecast(double east_mps, double north_mps) = 0;
 };
 
 } // namespace rfseek

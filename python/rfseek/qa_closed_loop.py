@@ -289,6 +289,54 @@ class qa_closed_loop(gr_unittest.TestCase):
             with self.assertRaisesRegex(ValueError, "seeker_config." + key):
                 rfseek.seeking_controller(cfg)
 
+    def test_wind_forecast_given_mid_flight(self):
+        # 6 m/s across the line of sight, no gusts. For 75 s `adaptive` has no forecast
+        # and its crab has barely begun (the bearing turns slowly far out); given the
+        # true wind then, it flies the wind triangle's crab from the next cycles on.
+        sc = rfseek.scenario(seed=21, start_angle_rad=0.0, wind_speed_mps=6.0,
+                             wind_to_rad=math.pi / 2)
+        w = rfseek.world(sc)
+        est = rfseek.tone_estimator(sc.samp_rate_hz, sc.window_len, sc.fft_len)
+        sk = rfseek.seeker(rfseek.simulation.seeker_for(sc, "adaptive"))
+
+        def fly(slots):
+            crabs = []
+            for _ in range(slots):
+                e = est.estimate(w.synthesize(sc.window_len))
+                m = rfseek.measurement()
+                m.slot, m.time_s, m.freq_hz, m.valid = w.slot, w.time_s, e.freq_hz, e.valid
+                m.snr_db, m.power_db = e.snr_db, e.power_db
+                m.has_heading, m.heading_rad = True, w.measured_heading_rad
+                c = sk.update(m)
+                if c.stage == 2:
+                    crabs.append(math.remainder(c.heading_rad - c.theta_est_rad,
+                                                2 * math.pi))
+                w.advance(c.heading_rad)
+            return np.degrees(np.mean(crabs[-300:]))
+
+        before = fly(1500)
+        b = w.bearing_to_emitter_rad
+        triangle = math.degrees(math.asin(-6.0 * math.cos(b) / 10.0))  # sin c = -w_perp/v
+        self.assertGreater(abs(before - triangle), 20.0)  # observed 0.2 against 36.7
+        self.assertTrue(sk.set_wind_forecast(0.0, 6.0))
+        self.assertEqual(sk.config().wind_forecast_north_mps, 6.0)
+        self.assertAlmostEqual(fly(400), triangle, delta=3.0)  # observed 37.0
+        # A strategy without a ground track takes none; bad values are named.
+        paper = rfseek.seeker(rfseek.simulation.seeker_for(sc, "paper"))
+        self.assertFalse(paper.set_wind_forecast(0.0, 6.0))
+        self.assertEqual(paper.config().wind_forecast_north_mps, 0.0)
+        for bad in ((12.0, 0.0), (float("nan"), 0.0)):
+            with self.assertRaisesRegex(ValueError, "wind_forecast"):
+                sk.set_wind_forecast(*bad)
+        # The block (GRC's callback): config() shows it, the same checks apply.
+        ctl = rfseek.seeking_controller(rfseek.seeker_config(strategy="adaptive"))
+        ctl.set_wind_forecast(3.0, -4.0)
+        self.assertEqual((ctl.config().wind_forecast_east_mps,
+                          ctl.config().wind_forecast_north_mps), (3.0, -4.0))
+        with self.assertRaisesRegex(ValueError, "below speed_mps"):
+            ctl.set_wind_forecast(9.0, 9.0)
+        self.assertEqual(ctl.config().wind_forecast_east_mps, 3.0)
+
 
 if __name__ == "__main__":
     gr_unittest.run(qa_closed_loop)

@@ -4,7 +4,7 @@
  */
 
 /* BINDTOOL_HEADER_FILE(seeker.h) */
-/* BINDTOOL_HEADER_FILE_HASH(89772681fa163abf4df3eaaeb080b284) */
+/* BINDTOOL_HEADER_FILE_HASH(e7090cb8c8860c039f9a8210fa24c4cd) */
 
 #include "kwargs.h"
 #include <gr-rfseek/seeker.h>
@@ -265,5 +265,19 @@ void bind_seeker(py::module& m)
         .def("theta_est_rad",
              &seeker::theta_est_rad,
              "The current estimate of the emitter's bearing (rad).")
-        .def("updates", &seeker::updates, "Heading updates applied so far.");
+        .def("updates", &seeker::updates, "Heading updates applied so far.")
+        .def(
+            "set_wind_forecast",
+            [](seeker& s, double east_mps, double north_mps) {
+                seeker_config c = s.config(); // checked as the controller checks it
+                c.wind_forecast_east_mps = east_mps;
+                c.wind_forecast_north_mps = north_mps;
+                c.validate();
+                return s.set_wind_forecast(east_mps, north_mps);
+            },
+            py::arg("east_mps"),
+            py::arg("north_mps"),
+            "A new wind forecast for the ground track, mid-flight (m/s toward east and "
+            "north; both 0: none); the crab learned so far is kept. False (nothing "
+            "changed) for a strategy without a ground track; ValueError for bad values.");
 }

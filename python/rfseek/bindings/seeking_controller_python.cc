@@ -4,7 +4,7 @@
  */
 
 /* BINDTOOL_HEADER_FILE(seeking_controller.h) */
-/* BINDTOOL_HEADER_FILE_HASH(8c053735c6a7d89477cc7c7a4a077495) */
+/* BINDTOOL_HEADER_FILE_HASH(6bcc49332c614e562b3f646341a513d7) */
 
 #include <gr-rfseek/seeking_controller.h>
 #include <pybind11/pybind11.h>
@@ -54,5 +54,12 @@ void bind_seeking_controller(py::module& m)
              "Whether it waits for the first heading before seeking.")
         .def("waiting_count",
              &seeking_controller::waiting_count,
-             "meas messages set aside while waiting for the first heading.");
+             "meas messages set aside while waiting for the first heading.")
+        .def("set_wind_forecast",
+             &seeking_controller::set_wind_forecast,
+             py::arg("east_mps"),
+             py::arg("north_mps"),
+             "A new wind forecast for the ground track, mid-flight (m/s toward east and "
+             "north, compass frame; both 0: none). ValueError for a non-finite value or "
+             "a speed not below the airspeed.");
 }

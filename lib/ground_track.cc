@@ -54,8 +54,7 @@ double ground_track_guidance::forecast_crab_rad(double bearing_rad) const
 
 double ground_track_guidance::total(double bearing_rad) const
 {
-    if (!(d_cfg.speed_mps > 0.0))
-        return d_crab;
+    // (Without a forecast this is d_crab itself: it is kept within the limit.)
     return std::clamp(
         forecast_crab_rad(bearing_rad) + d_crab, -d_cfg.max_crab_rad, d_cfg.max_crab_rad);
 }
@@ -65,9 +64,15 @@ void ground_track_guidance::set_forecast(double east_mps,
                                          double speed_mps)
 {
     const bool none = east_mps == 0.0 && north_mps == 0.0;
-    d_cfg.forecast_east_mps = none ? 0.0 : east_mps;
-    d_cfg.forecast_north_mps = none ? 0.0 : north_mps;
+    const double e = none ? 0.0 : east_mps, n = none ? 0.0 : north_mps;
+    if (e == d_cfg.forecast_east_mps && n == d_cfg.forecast_north_mps)
+        return;
+    d_cfg.forecast_east_mps = e;
+    d_cfg.forecast_north_mps = n;
     d_cfg.speed_mps = none ? 0.0 : speed_mps;
+    // What the law learned corrected the old forecast; the new one replaces it (kept,
+    // it would count the correction twice once the new forecast holds it).
+    d_crab = 0.0;
 }
 
 double ground_track_guidance::bearing_rate_std() const

@@ -297,17 +297,27 @@ void seeking_controller_impl::set_wait_for_heading(bool wait)
     d_wait_heading = wait;
 }
 
-void seeking_controller_impl::set_wind_forecast(double east_mps, double north_mps)
+bool seeking_controller_impl::set_wind_forecast(double east_mps, double north_mps)
 {
     gr::thread::scoped_lock lock(d_setlock);
     seeker_config c = d_seeker->config();
     c.wind_forecast_east_mps = east_mps;
     c.wind_forecast_north_mps = north_mps;
-    c.validate(); // names the field and the airspeed
-    if (!d_seeker->set_wind_forecast(east_mps, north_mps))
+    // A callback in a running flight (a GUI slider) must not stop the controller: a
+    // bad value is logged and the forecast in use kept.
+    try {
+        c.validate();
+    } catch (const std::invalid_argument& e) {
+        d_logger->error("set_wind_forecast: {}; the forecast in use is kept", e.what());
+        return false;
+    }
+    if (d_seeker->set_wind_forecast(east_mps, north_mps))
+        return true;
+    if ((east_mps != 0.0 || north_mps != 0.0) && d_logged.insert("wind_forecast").second)
         d_logger->warn("set_wind_forecast: strategy {} flies no ground track here: the "
                        "forecast is not used",
                        c.strategy);
+    return false;
 }
 
 bool seeking_controller_impl::wait_for_heading() const

@@ -29,7 +29,7 @@ public:
     int status() const override;
     bool done() const override;
     void set_wait_for_heading(bool wait) override;
-    void set_wind_forecast(double east_mps, double north_mps) override;
+    bool set_wind_forecast(double east_mps, double north_mps) override;
     bool wait_for_heading() const override;
     std::uint64_t waiting_count() const override;
     emitter_location location() const override;

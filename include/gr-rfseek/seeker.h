@@ -237,9 +237,10 @@ public:
     virtual std::uint64_t updates() const = 0; //!< Stage-2 updates applied
     /*!
      * A new wind forecast for the ground track, mid-flight (seeker_config::
-     * wind_forecast_east_mps / _north_mps; both 0: none). The crab learned so far is
-     * kept. Returns false, changing nothing, for a strategy that flies no ground track.
-     * The caller checks the values (seeking_controller::set_wind_forecast does).
+     * wind_forecast_east_mps / _north_mps; both 0: none). A changed forecast replaces
+     * what the law had learned (the crab is the new forecast's triangle from the next
+     * update on). Returns false, changing nothing, for a strategy that flies no ground
+     * track. The caller checks the values (seeking_controller::set_wind_forecast does).
      */
     virtual bool set_wind_forecast(double east_mps, double north_mps)
     {

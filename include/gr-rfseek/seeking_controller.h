@@ -82,13 +82,14 @@ public:
     virtual std::uint64_t waiting_count() const = 0;
     /*!
      * A new wind forecast for the ground track, mid-flight (m/s toward east and north in
-     * the compass frame; both 0: none; docs/seeker.md "A wind forecast"). The crab
-     * learned so far is kept; config() shows the new values. Throws
-     * std::invalid_argument (Python: ValueError) for a non-finite value or a speed not
-     * below the airspeed; with a strategy that flies no ground track it logs a warning
-     * and changes nothing.
+     * the compass frame; both 0: none; docs/seeker.md "A wind forecast"); it replaces
+     * what the law had learned, from the next probe cycle or Stage-2 step. config()
+     * shows the values in use. Returns false, changing nothing, for a non-finite value
+     * or a speed not below the airspeed (logged as an error: a callback in a running
+     * flight must not stop the controller) and for a strategy that flies no ground
+     * track (a warning, once, unless the forecast is 0, 0).
      */
-    virtual void set_wind_forecast(double east_mps, double north_mps) = 0;
+    virtual bool set_wind_forecast(double east_mps, double north_mps) = 0;
 };
 
 } // namespace rfseek

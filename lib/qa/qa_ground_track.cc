@@ -234,6 +234,33 @@ TEST(ground_track, a_forecast_beyond_the_limit_does_not_wind_the_learned_crab_up
     EXPECT_LT(crab, max - 1.0 * DEG);
 }
 
+TEST(ground_track, a_new_forecast_replaces_what_was_learned)
+{
+    // Learn a crab without a forecast (the bearing turning for 200 s), then give one:
+    // the learned part (a correction to no forecast) is dropped and the crab flown is
+    // the new forecast's triangle. The same forecast again changes nothing; clearing it
+    // leaves a crab of 0 within the limit; a forecast again picks the airspeed back up.
+    ground_track_guidance g;
+    for (int k = 0; k <= 50; ++k)
+        g.update(4.0 * k, M_PI + 0.0005 * 4.0 * k, 0.01);
+    const double b = g.bearing_rad();
+    ASSERT_GT(g.learned_crab_rad(), 3.0 * DEG); // something was learned
+    g.set_forecast(0.0, 6.0, V);
+    EXPECT_EQ(g.learned_crab_rad(), 0.0);
+    EXPECT_NEAR(g.crab_rad(), std::asin(-6.0 * std::cos(b) / V), 1e-12);
+    g.update(204.0, b + 0.002, 0.01); // learns on from there
+    const double learned = g.learned_crab_rad();
+    g.set_forecast(0.0, 6.0, V); // unchanged: kept
+    EXPECT_EQ(g.learned_crab_rad(), learned);
+    g.set_forecast(0.0, 0.0, V); // cleared
+    EXPECT_EQ(g.forecast_crab_rad(b), 0.0);
+    EXPECT_EQ(g.crab_rad(), 0.0);
+    g.set_forecast(-6.0, 0.0, V); // a headwind forecast: no crab, the airspeed back
+    EXPECT_NEAR(g.forecast_crab_rad(M_PI), 0.0, 1e-12);
+    g.set_forecast(0.0, -5.0, V);
+    EXPECT_NEAR(g.forecast_crab_rad(M_PI), std::asin(-0.5), 1e-12);
+}
+
 TEST(ground_track, the_forecast_is_checked_and_handed_over_by_the_simulation)
 {
     // seeker_config: finite, and slower than the airspeed, each component named.

@@ -328,14 +328,19 @@ class qa_closed_loop(gr_unittest.TestCase):
         for bad in ((12.0, 0.0), (float("nan"), 0.0)):
             with self.assertRaisesRegex(ValueError, "wind_forecast"):
                 sk.set_wind_forecast(*bad)
-        # The block (GRC's callback): config() shows it, the same checks apply.
+        # The block (GRC's callback): config() shows it; a bad value at run time (a
+        # slider past the airspeed) is refused without an exception, the forecast in
+        # use kept, so that the controller goes on flying.
         ctl = rfseek.seeking_controller(rfseek.seeker_config(strategy="adaptive"))
-        ctl.set_wind_forecast(3.0, -4.0)
+        self.assertTrue(ctl.set_wind_forecast(3.0, -4.0))
         self.assertEqual((ctl.config().wind_forecast_east_mps,
                           ctl.config().wind_forecast_north_mps), (3.0, -4.0))
-        with self.assertRaisesRegex(ValueError, "below speed_mps"):
-            ctl.set_wind_forecast(9.0, 9.0)
-        self.assertEqual(ctl.config().wind_forecast_east_mps, 3.0)
+        for bad in ((9.0, 9.0), (float("nan"), 1.0)):
+            self.assertFalse(ctl.set_wind_forecast(*bad))
+            self.assertEqual((ctl.config().wind_forecast_east_mps,
+                              ctl.config().wind_forecast_north_mps), (3.0, -4.0))
+        self.assertFalse(rfseek.seeking_controller(rfseek.seeker_config())
+                         .set_wind_forecast(0.0, 6.0))  # `paper`: no ground track
 
 
 if __name__ == "__main__":

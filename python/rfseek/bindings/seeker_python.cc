@@ -4,7 +4,7 @@
  */
 
 /* BINDTOOL_HEADER_FILE(seeker.h) */
-/* BINDTOOL_HEADER_FILE_HASH(e7090cb8c8860c039f9a8210fa24c4cd) */
+/* BINDTOOL_HEADER_FILE_HASH(7cb3e96925c7dba1f20801c48813703e) */
 
 #include "kwargs.h"
 #include <gr-rfseek/seeker.h>
@@ -278,6 +278,6 @@ void bind_seeker(py::module& m)
             py::arg("east_mps"),
             py::arg("north_mps"),
             "A new wind forecast for the ground track, mid-flight (m/s toward east and "
-            "north; both 0: none); the crab learned so far is kept. False (nothing "
+            "north; both 0: none); it replaces what the law had learned. False (nothing "
             "changed) for a strategy without a ground track; ValueError for bad values.");
 }

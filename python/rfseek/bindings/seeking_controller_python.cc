@@ -4,7 +4,7 @@
  */
 
 /* BINDTOOL_HEADER_FILE(seeking_controller.h) */
-/* BINDTOOL_HEADER_FILE_HASH(6bcc49332c614e562b3f646341a513d7) */
+/* BINDTOOL_HEADER_FILE_HASH(7ee5053fac4c1c2055b54db710e98efc) */
 
 #include <gr-rfseek/seeking_controller.h>
 #include <pybind11/pybind11.h>
@@ -60,6 +60,8 @@ void bind_seeking_controller(py::module& m)
              py::arg("east_mps"),
              py::arg("north_mps"),
              "A new wind forecast for the ground track, mid-flight (m/s toward east and "
-             "north, compass frame; both 0: none). ValueError for a non-finite value or "
-             "a speed not below the airspeed.");
+             "north, compass frame; both 0: none); it replaces what the law had learned. "
+             "False, nothing changed, for a non-finite value or a speed not below the "
+             "airspeed (logged as an error: a GUI callback must not stop a flight) or a "
+             "strategy without a ground track.");
 }

@@ -92,12 +92,8 @@ public:
     const seeker_config& config() const override { return d_cfg; }
     bool set_wind_forecast(double east_mps, double north_mps) override
     {
-        if (!d_cfg.adaptive_ground_track)
-            return false;
-        d_cfg.wind_forecast_east_mps = east_mps;
-        d_cfg.wind_forecast_north_mps = north_mps;
-        d_track.set_forecast(east_mps, north_mps, d_cfg.speed_mps);
-        return true;
+        return set_track_forecast(
+            d_cfg, d_track, d_cfg.adaptive_ground_track, east_mps, north_mps);
     }
     int stage() const override { return d_acquiring ? 1 : 2; }
     double theta_est_rad() const override { return d_theta; }

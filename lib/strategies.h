@@ -65,12 +65,26 @@ inline ground_track_guidance make_ground_track(const seeker_config& cfg, double 
     g.max_crab_rad = cfg.ground_track_max_crab_rad;
     g.gate = cfg.ground_track_gate;
     g.rate_walk = cfg.ground_track_rate_walk;
-    if (cfg.wind_forecast_east_mps != 0.0 || cfg.wind_forecast_north_mps != 0.0) {
-        g.forecast_east_mps = cfg.wind_forecast_east_mps;
-        g.forecast_north_mps = cfg.wind_forecast_north_mps;
-        g.speed_mps = cfg.speed_mps;
-    }
-    return ground_track_guidance(g);
+    ground_track_guidance t(g);
+    t.set_forecast(
+        cfg.wind_forecast_east_mps, cfg.wind_forecast_north_mps, cfg.speed_mps);
+    return t;
+}
+
+//! seeker::set_wind_forecast for a strategy whose ground track is `track` (on: the
+//! strategy flies it): the configuration and the guidance take the new forecast.
+inline bool set_track_forecast(seeker_config& cfg,
+                               ground_track_guidance& track,
+                               bool on,
+                               double east_mps,
+                               double north_mps)
+{
+    if (!on)
+        return false;
+    cfg.wind_forecast_east_mps = east_mps;
+    cfg.wind_forecast_north_mps = north_mps;
+    track.set_forecast(east_mps, north_mps, cfg.speed_mps);
+    return true;
 }
 
 //! The turn limits the strategies plan with (the vehicle's, as the configuration says).

@@ -128,6 +128,14 @@ void autopilot_config::validate() const
     if (!(thrust >= 0 && thrust <= 1))
         throw std::invalid_argument("autopilot_link: thrust = " + fmt(thrust) +
                                     ": must be in [0, 1]");
+    if (!(turn_bank_deg >= 0 && turn_bank_deg <= 30))
+        throw std::invalid_argument("autopilot_link: turn_bank_deg = " +
+                                    fmt(turn_bank_deg) + ": must be in [0, 30]");
+    if (!(turn_speed_mps >= 0 && turn_speed_mps <= 50) ||
+        (turn_bank_deg > 0 && turn_speed_mps == 0))
+        throw std::invalid_argument(
+            "autopilot_link: turn_speed_mps = " + fmt(turn_speed_mps) +
+            ": must be in (0, 50] m/s when turn_bank_deg > 0 (the speed at pitch_deg)");
     if (target_system == 0 || own_system == 0 || own_component == 0)
         throw std::invalid_argument("autopilot_link: system and component ids must be in "
                                     "[1, 255] (0 is the broadcast address)");

@@ -113,8 +113,10 @@ void autopilot_session::handle(const mavlink::frame& f, double t)
     } else if (name == "ATTITUDE") {
         // Yaw: radians clockwise from north (NED). Module: counter-clockwise from east.
         const double yaw = m.get("yaw");
-        if (std::isfinite(yaw))
+        if (std::isfinite(yaw)) {
             d_nav.push_back({ wrap_remainder(M_PI / 2 - yaw), t, d_airspeed });
+            d_attitude_yaw = d_nav.back().heading_rad;
+        }
     } else if (name == "VFR_HUD") {
         const double a = m.get("airspeed");
         if (std::isfinite(a) && a >= 0)
@@ -359,22 +361,49 @@ void autopilot_session::queue_command_int(std::uint16_t cmd,
 
 mavlink::message autopilot_session::setpoint() const
 {
-    // Attitude: roll 0, pitch forward (nose down, negative in NED), yaw the heading
-    // (clockwise from north). Quaternion of the 3-2-1 rotation, w x y z.
-    const double yaw = M_PI / 2 - *d_heading;
+    // Attitude: roll (0 unless in a coordinated turn), pitch forward (nose down,
+    // negative in NED), yaw the heading (clockwise from north). Quaternion of the 3-2-1
+    // rotation, w x y z.
+    const double yaw = M_PI / 2 - d_yaw_sp.value_or(*d_heading);
     const double pitch = -d_cfg.pitch_deg * M_PI / 180.0;
     const double cy = std::cos(yaw / 2), sy = std::sin(yaw / 2);
     const double cp = std::cos(pitch / 2), sp = std::sin(pitch / 2);
+    const double cr = std::cos(d_roll_sp / 2), sr = std::sin(d_roll_sp / 2);
     mavlink::message m("SET_ATTITUDE_TARGET");
     m.set("target_system", d_cfg.target_system);
     m.set("target_component", d_cfg.target_component);
     m.set("type_mask", IGNORE_BODY_RATES);
-    m.set("q", cp * cy, 0);
-    m.set("q", -sp * sy, 1);
-    m.set("q", sp * cy, 2);
-    m.set("q", cp * sy, 3);
+    m.set("q", cr * cp * cy + sr * sp * sy, 0);
+    m.set("q", sr * cp * cy - cr * sp * sy, 1);
+    m.set("q", cr * sp * cy + sr * cp * sy, 2);
+    m.set("q", cr * cp * sy - sr * sp * cy, 3);
     m.set("thrust", d_cfg.thrust);
     return m;
+}
+
+void autopilot_session::advance_turn(double t)
+{
+    if (d_cfg.turn_bank_deg <= 0 || !d_heading) {
+        d_yaw_sp.reset();
+        d_roll_sp = 0;
+        return;
+    }
+    constexpr double G = 9.80665;
+    if (!d_yaw_sp) { // the turn starts from where the vehicle points
+        d_yaw_sp = d_attitude_yaw.value_or(*d_heading);
+        d_last_turn = t;
+    }
+    const double dt = std::clamp(t - d_last_turn, 0.0, 1.0);
+    d_last_turn = t;
+    const double rate_max =
+        G * std::tan(d_cfg.turn_bank_deg * M_PI / 180.0) / d_cfg.turn_speed_mps;
+    const double step =
+        std::clamp(wrap_remainder(*d_heading - *d_yaw_sp), -rate_max * dt, rate_max * dt);
+    d_yaw_sp = wrap_remainder(*d_yaw_sp + step);
+    // Counter-clockwise (a positive rate) is a left turn: the left wing down, a negative
+    // roll in NED; the bank that turns the velocity at that rate, atan(v w / g).
+    const double rate = dt > 0 ? step / dt : 0.0;
+    d_roll_sp = -std::atan(d_cfg.turn_speed_mps * rate / G);
 }
 
 bool autopilot_session::streaming() const
@@ -478,6 +507,7 @@ std::vector<std::vector<std::uint8_t>> autopilot_session::poll(double t)
     if (commanding() && d_cfg.family == autopilot_family::ardupilot_plane)
         plane_commands(t);
     if (streaming() && t - d_last_setpoint >= d_cfg.setpoint_period_s) {
+        advance_turn(t);
         mavlink::message m = setpoint();
         m.set("time_boot_ms", std::fmod(std::max(t, 0.0) * 1000.0, 4294967296.0));
         send(m, t, out);

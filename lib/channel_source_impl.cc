@@ -41,25 +41,29 @@ channel_source::sptr channel_source::make(const scenario& sc,
                                           const std::string& mode,
                                           bool lockstep,
                                           bool realtime,
-                                          double speedup)
+                                          double speedup,
+                                          bool follow_truth)
 {
     return gnuradio::make_block_sptr<channel_source_impl>(
-        sc, mode, lockstep, realtime, speedup);
+        sc, mode, lockstep, realtime, speedup, follow_truth);
 }
 
 channel_source_impl::channel_source_impl(const scenario& sc,
                                          const std::string& mode,
                                          bool lockstep,
                                          bool realtime,
-                                         double speedup)
+                                         double speedup,
+                                         bool follow_truth)
     : gr::sync_block("channel_source",
                      gr::io_signature::make(0, 0, 0),
                      gr::io_signature::make(1, 1, sizeof(gr_complex))),
       d_world(sc),
       d_continuous(parse_mode(mode)),
+      d_follow(follow_truth),
       d_lockstep(lockstep),
       d_realtime(realtime),
       d_port_cmd(pmt::mp("cmd")),
+      d_port_truth(pmt::mp("truth")),
       d_port_state(pmt::mp("state")),
       d_key_beacon(pmt::mp("rfseek_beacon")),
       d_key_slot(pmt::mp("slot")),
@@ -73,6 +77,8 @@ channel_source_impl::channel_source_impl(const scenario& sc,
     d_cmd_heading = d_world.heading_rad();
     message_port_register_in(d_port_cmd);
     set_msg_handler(d_port_cmd, [this](const pmt::pmt_t& msg) { handle_cmd(msg); });
+    message_port_register_in(d_port_truth);
+    set_msg_handler(d_port_truth, [this](const pmt::pmt_t& msg) { handle_truth(msg); });
     message_port_register_out(d_port_state);
 }
 
@@ -86,7 +92,9 @@ bool channel_source_impl::start()
     }
     d_logger->debug("start: mode {}, {}, {}, seed {}",
                     mode(),
-                    d_lockstep ? "lockstep" : "free-running",
+                    d_follow     ? "following the truth"
+                    : d_lockstep ? "lockstep"
+                                 : "free-running",
                     d_realtime ? "real time" : "as fast as possible",
                     d_world.config().seed);
     return true;
@@ -128,7 +136,7 @@ void channel_source_impl::handle_cmd(const pmt::pmt_t& msg)
         drop("non-finite 'heading'", msg);
         return;
     }
-    if (!pmt::is_null(s)) {
+    if (!pmt::is_null(s) && !d_follow) { // following, the autopilot flies the heading
         if (!(pmt::is_integer(s) || pmt::is_uint64(s))) {
             drop("non-integer 'slot'", msg);
             return;
@@ -171,6 +179,101 @@ void channel_source_impl::handle_cmd(const pmt::pmt_t& msg)
                            "seeking_controller self_arrival too)");
         }
     }
+}
+
+void channel_source_impl::handle_truth(const pmt::pmt_t& msg)
+{
+    gr::thread::scoped_lock lock(d_setlock);
+    const auto reject = [&](const std::string& why) {
+        ++d_truth_dropped;
+        if (d_logged.insert("truth: " + why).second)
+            d_logger->warn("truth dropped ({}): {} (further drops of this kind are "
+                           "counted silently; see truth_dropped_count())",
+                           why,
+                           pmt::write_string(msg));
+    };
+    if (!d_follow) {
+        reject("the source does not follow a truth (follow_truth false)");
+        return;
+    }
+    if (!pmt::is_dict(msg) || pmt::is_null(msg)) {
+        reject("not a dict");
+        return;
+    }
+    vehicle_truth t;
+    const std::pair<const char*, double*> fields[] = {
+        { "time", &t.time_s },       { "east", &t.east_m },
+        { "north", &t.north_m },     { "up", &t.up_m },
+        { "v_east", &t.v_east_mps }, { "v_north", &t.v_north_mps },
+        { "v_up", &t.v_up_mps },     { "heading", &t.heading_rad }
+    };
+    for (const auto& [key, field] : fields) {
+        pmt::pmt_t v;
+        try {
+            v = pmt::dict_ref(msg, pmt::mp(key), pmt::PMT_NIL);
+        } catch (const std::exception&) {
+            reject("not a dict");
+            return;
+        }
+        if (pmt::is_real(v) || pmt::is_integer(v))
+            *field = pmt::to_double(v);
+        else if (pmt::is_uint64(v))
+            *field = static_cast<double>(pmt::to_uint64(v));
+        else {
+            reject(std::string("no numeric '") + key + "'");
+            return;
+        }
+        if (!std::isfinite(*field)) {
+            reject(std::string("non-finite '") + key + "'");
+            return;
+        }
+    }
+    if (!d_truth.empty() && t.time_s < d_truth.back().time_s) {
+        reject("before the last truth");
+        return;
+    }
+    ++d_truth_count;
+    d_truth.push_back(t);
+}
+
+bool channel_source_impl::truth_at(std::uint64_t k, vehicle_truth& out)
+{
+    const double t = d_truth_t0 + static_cast<double>(k) * d_world.config().slot_period_s;
+    // Keep one truth at or before t (the earlier ones are past for good).
+    while (d_truth.size() > 1 && d_truth[1].time_s <= t)
+        d_truth.pop_front();
+    if (d_truth.empty() || d_truth.back().time_s < t)
+        return false; // parked until the simulator's clock has passed t
+    const vehicle_truth& a = d_truth.front();
+    if (d_truth.size() == 1 || a.time_s >= t) {
+        out = a;
+        out.time_s = t;
+        return true;
+    }
+    const vehicle_truth& b = d_truth[1];
+    const double u = (t - a.time_s) / (b.time_s - a.time_s);
+    const auto mix = [u](double p, double q) { return p + u * (q - p); };
+    out.time_s = t;
+    out.east_m = mix(a.east_m, b.east_m);
+    out.north_m = mix(a.north_m, b.north_m);
+    out.up_m = mix(a.up_m, b.up_m);
+    out.v_east_mps = mix(a.v_east_mps, b.v_east_mps);
+    out.v_north_mps = mix(a.v_north_mps, b.v_north_mps);
+    out.v_up_mps = mix(a.v_up_mps, b.v_up_mps);
+    out.heading_rad = a.heading_rad + u * world::wrap(b.heading_rad - a.heading_rad);
+    return true;
+}
+
+void channel_source_impl::end_run_now()
+{
+    d_world.end_run();
+    publish_state();
+    d_logger->info("the vehicle declared its mission done at slot {}, {:.1f} "
+                   "m from the emitter ({} d_v)",
+                   d_world.slot(),
+                   d_world.distance_m(),
+                   d_world.reached() ? "came within" : "never came within");
+    d_done = true;
 }
 
 void channel_source_impl::publish_state()
@@ -235,7 +338,9 @@ void channel_source_impl::begin_slot(std::uint64_t offset)
     pmt::pmt_t b = pmt::make_dict();
     b = pmt::dict_add(b, d_key_slot, pmt::from_uint64(d_world.slot()));
     b = pmt::dict_add(b, d_key_time, pmt::from_double(t));
-    b = pmt::dict_add(b, d_key_heading, pmt::from_double(d_world.measured_heading_rad()));
+    if (!d_follow) // following, the heading comes from the autopilot (its nav)
+        b = pmt::dict_add(
+            b, d_key_heading, pmt::from_double(d_world.measured_heading_rad()));
     add_item_tag(0, offset, d_key_beacon, b, alias_pmt());
     publish_state();
 }
@@ -250,22 +355,21 @@ int channel_source_impl::work(int noutput_items,
 
     while (produced < noutput_items && !d_done) {
         if (d_started && !d_next_ready && d_pos == d_buf.size()) {
-            // Slot fully emitted: fly it, with the cmd for it in lockstep.
-            if (d_lockstep && !d_have_cmd)
-                break; // parked until the cmd for this slot arrives
+            // Slot fully emitted: fly it, with the cmd for it in lockstep, or follow
+            // the truth once the simulator's clock has passed the next slot.
+            vehicle_truth next;
+            if (d_follow ? !truth_at(d_world.slot() + 1, next)
+                         : d_lockstep && !d_have_cmd)
+                break; // parked until the cmd (the truth) for this slot arrives
             d_have_cmd = false;
             if (d_end_requested) {
-                d_world.end_run();
-                publish_state();
-                d_logger->info("the vehicle declared its mission done at slot {}, {:.1f} "
-                               "m from the emitter ({} d_v)",
-                               d_world.slot(),
-                               d_world.distance_m(),
-                               d_world.reached() ? "came within" : "never came within");
-                d_done = true;
+                end_run_now();
                 break;
             }
-            d_world.advance(d_cmd_heading);
+            if (d_follow)
+                d_world.follow(next);
+            else
+                d_world.advance(d_cmd_heading);
             if (d_world.finished()) {
                 publish_state();
                 // Under self arrival, arrived() only says "within d_v at this slot":
@@ -284,6 +388,14 @@ int channel_source_impl::work(int noutput_items,
                 break;
             }
             d_next_ready = true;
+        }
+        if (!d_started && d_follow) {
+            // Slot 0 is the first truth: it places the emitter.
+            if (d_truth.empty())
+                break;
+            d_truth_t0 = d_truth.front().time_s;
+            if (!d_world.following())
+                d_world.follow(d_truth.front());
         }
         if (!d_started || d_next_ready) {
             if (produced > 0 && time_to_due().count() > 0)
@@ -329,6 +441,18 @@ std::uint64_t channel_source_impl::malformed_count() const
 {
     gr::thread::scoped_lock lock(setlock());
     return d_malformed;
+}
+
+std::uint64_t channel_source_impl::truth_count() const
+{
+    gr::thread::scoped_lock lock(setlock());
+    return d_truth_count;
+}
+
+std::uint64_t channel_source_impl::truth_dropped_count() const
+{
+    gr::thread::scoped_lock lock(setlock());
+    return d_truth_dropped;
 }
 
 std::uint64_t channel_source_impl::stale_count() const
@@ -408,7 +532,7 @@ std::chrono::steady_clock::duration channel_source_impl::paced_time() const
 
 std::chrono::steady_clock::duration channel_source_impl::time_to_due() const
 {
-    if (!d_realtime)
+    if (!d_realtime || d_follow) // following: paced by the simulator's clock
         return std::chrono::steady_clock::duration::zero();
     return d_t0 + paced_time() - std::chrono::steady_clock::now();
 }

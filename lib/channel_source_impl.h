@@ -10,6 +10,7 @@
 #include <gr-rfseek/channel_source.h>
 #include <gr-rfseek/world.h>
 #include <chrono>
+#include <deque>
 #include <set>
 #include <vector>
 
@@ -23,7 +24,8 @@ public:
                         const std::string& mode,
                         bool lockstep,
                         bool realtime,
-                        double speedup);
+                        double speedup,
+                        bool follow_truth);
 
     int work(int noutput_items,
              gr_vector_const_void_star& input_items,
@@ -37,6 +39,9 @@ public:
     std::uint64_t stale_count() const override;
     std::uint64_t late_count() const override;
     bool lockstep() const override;
+    bool follow_truth() const override { return d_follow; }
+    std::uint64_t truth_count() const override;
+    std::uint64_t truth_dropped_count() const override;
     bool realtime() const override;
 
     void set_snr_db(double snr_db) override;
@@ -53,6 +58,10 @@ private:
         return const_cast<gr::thread::mutex&>(d_setlock);
     }
     void handle_cmd(const pmt::pmt_t& msg);
+    void handle_truth(const pmt::pmt_t& msg);
+    // follow_truth: the truth at slot k's time, if one at or after it has arrived.
+    bool truth_at(std::uint64_t k, vehicle_truth& out);
+    void end_run_now();
     void drop(const std::string& kind, const pmt::pmt_t& msg);
     void begin_slot(std::uint64_t offset);
     void publish_state();
@@ -65,6 +74,10 @@ private:
 
     world d_world;
     const bool d_continuous;
+    const bool d_follow;
+    std::deque<vehicle_truth> d_truth; // follow_truth: received, in time order
+    double d_truth_t0 = 0.0;           // the first truth's time: slot 0
+    std::uint64_t d_truth_count = 0, d_truth_dropped = 0;
     bool d_lockstep;
     bool d_realtime;
     double d_speedup = 1.0;
@@ -85,6 +98,7 @@ private:
     std::chrono::steady_clock::time_point d_t0;
 
     const pmt::pmt_t d_port_cmd;
+    const pmt::pmt_t d_port_truth;
     const pmt::pmt_t d_port_state;
     const pmt::pmt_t d_key_beacon;
     const pmt::pmt_t d_key_slot;

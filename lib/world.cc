@@ -58,6 +58,7 @@ world::world(const scenario& sc) : d_sc(sc)
     d_cfo_hz = d_sc.cfo_hz.value_or(cfo);
     d_cfo_drift = d_sc.cfo_drift_hz_per_s.value_or(drift);
     d_cfo_phase = cfo_phase;
+    d_alt = d_sc.altitude_m;
 
     // Scatterers uniform in the annulus area, angles uniform (Sec. II), Gamma_i with
     // uniform magnitude in [gamma_min, gamma_max] and uniform phase.
@@ -118,7 +119,7 @@ world::world(const scenario& sc) : d_sc(sc)
 
 bool world::flat_and_calm() const
 {
-    return d_sc.altitude_m == 0.0 && d_sc.wind_speed_mps == 0.0 &&
+    return !d_follow && d_sc.altitude_m == 0.0 && d_sc.wind_speed_mps == 0.0 &&
            d_sc.wind_gust_mps == 0.0;
 }
 
@@ -133,15 +134,19 @@ void world::draw_compass_error(std::uint64_t index)
 
 double world::ground_vx_mps() const
 {
+    if (d_follow)
+        return d_vx;
     return d_sc.speed_mps * std::cos(d_heading) + d_wind_x + d_gust_x;
 }
 
 double world::ground_vy_mps() const
 {
+    if (d_follow)
+        return d_vy;
     return d_sc.speed_mps * std::sin(d_heading) + d_wind_y + d_gust_y;
 }
 
-double world::slant_range_m() const { return std::hypot(distance_m(), d_sc.altitude_m); }
+double world::slant_range_m() const { return std::hypot(distance_m(), d_alt); }
 
 void world::update_amplitude()
 {
@@ -188,8 +193,8 @@ double world::los_doppler_hz() const
     if (flat_and_calm())
         return d_sc.max_doppler_hz() * std::cos(d_heading - bearing_to_emitter_rad());
     // Ground velocity along the unit vector toward the emitter (at ground level).
-    return (ground_vx_mps() * -d_x + ground_vy_mps() * -d_y) / slant_range_m() /
-           d_sc.wavelength_m();
+    return (ground_vx_mps() * -d_x + ground_vy_mps() * -d_y + d_vz * -d_alt) /
+           slant_range_m() / d_sc.wavelength_m();
 }
 
 void world::fill_paths(std::vector<path_state>& out) const
@@ -202,14 +207,15 @@ void world::fill_paths(std::vector<path_state>& out) const
     out.clear();
     if (!flat_and_calm()) {
         // 3-D: the UAV at altitude h, emitter and scatterers on the ground; the Doppler
-        // is the ground velocity (air + wind) along the unit vector toward each source.
-        const double h = d_sc.altitude_m;
+        // is the ground velocity (air + wind, or the truth's, climbs included) along
+        // the unit vector toward each source.
+        const double h = d_alt;
         const double inv_lambda = 1.0 / d_sc.wavelength_m();
         const double vx = ground_vx_mps(), vy = ground_vy_mps();
         const double d3 = std::sqrt(d_x * d_x + d_y * d_y + h * h);
         out.push_back(
             { d_amp * detail::polar(1.0 / d3, -detail::fmod_exact(beta * d3, TWO_PI)),
-              inv_lambda * (vx * -d_x + vy * -d_y) / d3,
+              inv_lambda * (vx * -d_x + vy * -d_y + d_vz * -h) / d3,
               d3 });
         for (std::size_t i = 0; i < d_scatterers.size(); ++i) {
             const auto& s = d_scatterers[i];
@@ -219,7 +225,7 @@ void world::fill_paths(std::vector<path_state>& out) const
             out.push_back(
                 { d_amp * s.gamma *
                       detail::polar(1.0 / L, -detail::fmod_exact(beta * L, TWO_PI)),
-                  inv_lambda * (vx * dx + vy * dy) / ri,
+                  inv_lambda * (vx * dx + vy * dy + d_vz * -h) / ri,
                   L });
         }
         return;
@@ -326,6 +332,8 @@ void world::advance(double commanded_heading_rad)
     if (finished())
         throw std::logic_error(
             "world::advance: the run has finished (arrived or capped)");
+    if (d_follow)
+        throw std::logic_error("world::advance: the world follows a truth (follow())");
 
     const double dt = d_sc.slot_period_s;
     const double v = d_sc.speed_mps;
@@ -389,14 +397,65 @@ void world::advance(double commanded_heading_rad)
     }
     d_flown += v * dt; // through the air: what the battery pays
 
-    // CFO: integrate the phase over the slot, then step drift and random walk.
+    advance_cfo(dt, d_slot);
+    ++d_slot;
+    update_arrival();
+    d_capped = !finished() && d_flown >= d_cap - 1e-9;
+    draw_measured_heading();
+}
+
+void world::advance_cfo(double dt, std::uint64_t index)
+{
+    // Integrate the phase over the slot, then step drift and random walk.
     d_cfo_phase =
         wrap(d_cfo_phase + TWO_PI * (d_cfo_hz * dt + 0.5 * d_cfo_drift * dt * dt));
-    rng g(d_sc.seed, STREAM_CFO_WALK, d_slot);
+    rng g(d_sc.seed, STREAM_CFO_WALK, index);
     d_cfo_hz +=
         d_cfo_drift * dt + d_sc.cfo_walk_hz_per_sqrt_s * std::sqrt(dt) * g.normal();
+}
 
-    ++d_slot;
+void world::follow(const vehicle_truth& s)
+{
+    for (double v : { s.time_s,
+                      s.east_m,
+                      s.north_m,
+                      s.up_m,
+                      s.v_east_mps,
+                      s.v_north_mps,
+                      s.v_up_mps,
+                      s.heading_rad })
+        if (!std::isfinite(v))
+            throw std::invalid_argument("world::follow: every field of the truth must "
+                                        "be finite");
+    if (finished())
+        throw std::logic_error("world::follow: the run has finished (arrived or capped)");
+    if (!d_follow) {
+        // The first truth places the emitter: the vehicle is where the scenario starts.
+        d_follow = true;
+        d_anchor_x = d_x - s.east_m;
+        d_anchor_y = d_y - s.north_m;
+    } else {
+        const double dt = s.time_s - d_follow_time;
+        if (!(dt >= 0.0))
+            throw std::invalid_argument(
+                "world::follow: time_s = " + std::to_string(s.time_s) +
+                ": must not be before the last truth's (" +
+                std::to_string(d_follow_time) + ")");
+        const double x = s.east_m + d_anchor_x, y = s.north_m + d_anchor_y;
+        d_flown += std::hypot(x - d_x, y - d_y); // the true track over the ground
+        advance_cfo(dt, d_slot);
+        ++d_slot;
+        draw_compass_error(d_slot); // what the compass reads of the heading flown
+    }
+    d_follow_time = s.time_s;
+    d_x = s.east_m + d_anchor_x;
+    d_y = s.north_m + d_anchor_y;
+    d_alt = s.up_m;
+    d_vx = s.v_east_mps;
+    d_vy = s.v_north_mps;
+    d_vz = s.v_up_mps;
+    d_heading = wrap(s.heading_rad);
+    d_bank = 0.0;
     update_arrival();
     d_capped = !finished() && d_flown >= d_cap - 1e-9;
     draw_measured_heading();

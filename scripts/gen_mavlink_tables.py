@@ -23,12 +23,15 @@ import os
 import sys
 import xml.etree.ElementTree as ET
 
-# The messages the autopilot link and the simulated autopilot use.
+# The messages the autopilot link, the simulated autopilot and the SITL rehearsal use.
 MESSAGES = [
     "HEARTBEAT", "SYS_STATUS", "SET_MODE", "ATTITUDE", "GLOBAL_POSITION_INT", "VFR_HUD",
     "COMMAND_INT", "COMMAND_LONG", "COMMAND_ACK", "SET_ATTITUDE_TARGET",
     "ATTITUDE_TARGET", "SET_POSITION_TARGET_LOCAL_NED", "POSITION_TARGET_LOCAL_NED",
     "STATUSTEXT",
+    # The SITL rehearsal: the simulator's truth, its clock, parameters and RC override.
+    "SIM_STATE", "HIL_STATE_QUATERNION", "SYSTEM_TIME", "PARAM_SET", "PARAM_VALUE",
+    "RC_CHANNELS_OVERRIDE",
 ]
 ROOT = "ardupilotmega.xml"  # the dialect; its <include>s are followed
 SIZES = {"char": 1, "uint8_t": 1, "int8_t": 1, "uint16_t": 2, "int16_t": 2,

@@ -78,6 +78,17 @@ struct RFSEEK_API autopilot_config {
     double heading_accel_mps2 = 6.0;
     double pitch_deg = 5; //!< copter, PX4: forward pitch of the setpoint
     double thrust = 0.5;  //!< copter, PX4: setpoint thrust
+    /*!
+     * Copter, PX4: the bank of a coordinated turn (deg, [0, 30]). A multirotor pitched
+     * forward keeps its velocity when only its yaw turns: its track lags the yaw by
+     * seconds. With a bank, the yaw setpoint turns toward the command at g tan(bank) /
+     * turn_speed_mps, rolled into the turn so that the velocity turns with the yaw, as
+     * a fixed wing's does. 0: the yaw steps to the command (the track follows late).
+     */
+    double turn_bank_deg = 0;
+    //! Copter, PX4: the speed over the ground at pitch_deg (m/s), for the coordinated
+    //! turn's rate; needed (> 0) when turn_bank_deg > 0.
+    double turn_speed_mps = 0;
     //! Message signing: sign what we send and require signed frames from the link.
     std::optional<std::array<std::uint8_t, 32>> signing_key;
     std::uint8_t signing_link_id = 0;
@@ -171,6 +182,7 @@ private:
               std::vector<std::vector<std::uint8_t>>& out);
     void queue_command(std::uint16_t cmd, const std::array<float, 7>& params);
     mavlink::message setpoint() const;
+    void advance_turn(double t);
     bool commanding() const { return d_status.state == "commanding"; }
 
     autopilot_config d_cfg;
@@ -181,8 +193,11 @@ private:
     std::uint8_t d_seq = 0;
     double d_last_frame = -1, d_last_sent_heartbeat = -1e300, d_last_setpoint = -1e300;
     double d_last_heading_sent_at = -1e300;
-    std::optional<double> d_heading;      //!< the controller's last command
-    std::optional<double> d_heading_sent; //!< plane: last heading commanded
+    std::optional<double> d_heading;        //!< the controller's last command
+    std::optional<double> d_yaw_sp;         //!< coordinated turn: the yaw set now
+    std::optional<double> d_attitude_yaw;   //!< the autopilot's last reported heading
+    double d_roll_sp = 0, d_last_turn = -1; //!< coordinated turn: roll (rad), when
+    std::optional<double> d_heading_sent;   //!< plane: last heading commanded
     bool d_speed_sent = false;
     bool d_speed_commanded = false; //!< a speed of ours is in force on the autopilot
     bool d_done = false;            //!< finish() was called

@@ -42,6 +42,20 @@ namespace rfseek {
  * the sample clock, speedup times faster (a sped-up rehearsal of a live run). The stream
  * ends (WORK_DONE) when the UAV is within success_radius_m or has flown the flight cap.
  * Malformed cmd messages are logged once per kind, counted and dropped.
+ *
+ * follow_truth: the vehicle is flown by something else (ArduPilot's or PX4's SITL) and
+ * the world follows its true state, given on message port "truth" as dicts {time (s,
+ * the simulator's clock), east, north, up (m, any local level frame whose height is the
+ * emitter's ground), v_east, v_north, v_up (m/s over the ground), heading (rad, true,
+ * counter-clockwise from east)}, in time order. Slot k is the truth at t0 + k T_slot, t0
+ * the first truth's time (interpolated between the two truths around it), and is
+ * produced only once a truth at or after that time has arrived: the samples, their
+ * times and the Doppler follow the simulator's clock, whatever its pace (realtime and
+ * speedup do not apply). The first truth places the emitter (world::follow). Headings
+ * on "cmd" are not flown (the autopilot flies them); a cmd's "done" still ends a
+ * self-arrival run. The beacon tags carry no heading: the vehicle's heading reaches
+ * the controller from the autopilot, as in flight. Truths that are malformed or go
+ * back in time are logged once per kind, counted and dropped.
  */
 class RFSEEK_API channel_source : virtual public gr::sync_block
 {
@@ -54,12 +68,14 @@ public:
      * \param lockstep wait for the cmd of each slot before producing the next
      * \param realtime pace output to real time (for live-looking demos)
      * \param speedup pacing speed-up over real time, in (0, 1e6] (1: real time)
+     * \param follow_truth follow the true state on "truth" (a vehicle flown by SITL)
      */
     static sptr make(const scenario& sc,
                      const std::string& mode = "burst",
                      bool lockstep = true,
                      bool realtime = false,
-                     double speedup = 1.0);
+                     double speedup = 1.0,
+                     bool follow_truth = false);
 
     virtual scenario config() const = 0;
     virtual std::string mode() const = 0;
@@ -75,6 +91,12 @@ public:
     //! Free-running: commands applied after their slot had passed (the latest one wins).
     virtual std::uint64_t late_count() const = 0;
     virtual bool lockstep() const = 0;
+    //! The world follows the truth on "truth".
+    virtual bool follow_truth() const = 0;
+    //! follow_truth: truths received and kept (in time order, well formed).
+    virtual std::uint64_t truth_count() const = 0;
+    //! follow_truth: truths dropped (malformed, or before the last one).
+    virtual std::uint64_t truth_dropped_count() const = 0;
     virtual bool realtime() const = 0;
     virtual double speedup() const = 0;
 

@@ -38,6 +38,20 @@ struct RFSEEK_API path_state {
     double length_m;                //!< emitter -> (scatterer ->) UAV
 };
 
+/*!
+ * One true state of a vehicle flown by something else (a flight simulator such as
+ * ArduPilot's or PX4's SITL), in a local level frame of its own: east, north, up (m)
+ * from any fixed point whose height is the emitter's ground, velocity over the ground
+ * (m/s), the true heading (rad, counter-clockwise from east), and the time on the
+ * simulator's clock (s).
+ */
+struct RFSEEK_API vehicle_truth {
+    double time_s = 0.0;
+    double east_m = 0.0, north_m = 0.0, up_m = 0.0;
+    double v_east_mps = 0.0, v_north_mps = 0.0, v_up_mps = 0.0;
+    double heading_rad = 0.0;
+};
+
 class RFSEEK_API world
 {
 public:
@@ -62,12 +76,17 @@ public:
     double distance_m() const;
     //! Straight-line (3-D) distance to the emitter, altitude included.
     double slant_range_m() const;
+    //! Height above the emitter's ground (the scenario's, or the truth followed).
+    double altitude_m() const { return d_alt; }
+    //! Vertical speed (m/s, up); 0 unless the world follows a truth.
+    double up_mps() const { return d_vz; }
     //! Velocity over the ground (air velocity + wind), m/s.
     double ground_vx_mps() const;
     double ground_vy_mps() const;
     //! Compass error of the heading flown in this slot (flown - commanded).
     double compass_error_rad() const { return d_compass_err; }
-    //! Distance flown through the air (what the battery pays).
+    //! Distance flown through the air (what the battery pays); following a truth, the
+    //! length of the true track over the ground.
     double distance_flown_m() const { return d_flown; }
     /*!
      * What the straight ground line costs: the air distance a vehicle pays flying the
@@ -140,6 +159,22 @@ public:
      */
     void advance(double commanded_heading_rad);
 
+    /*!
+     * Follow a vehicle flown by something else: this slot's state is the truth `s`
+     * (its position, height, ground velocity and heading; the Doppler of every path is
+     * that velocity along the direction to the path's source, climbs included). The
+     * first call places the emitter: the vehicle is then where the scenario starts it
+     * (initial_distance_m at start_angle_rad from the emitter), whatever the truth's
+     * frame. Each later call is the next slot, at a time not before the last one's;
+     * the carrier offset advances by the time between them, and distance_flown_m()
+     * by the track's length. advance() is refused from the first call on.
+     * std::invalid_argument for a non-finite field or a time that goes back,
+     * std::logic_error once finished.
+     */
+    void follow(const vehicle_truth& s);
+    //! follow() has been called: the world follows a truth.
+    bool following() const { return d_follow; }
+
     // Run-time changes (take effect from the current slot)
     void set_snr_db(double snr_db);
     void set_heading_noise_rad(double sigma);
@@ -162,6 +197,7 @@ private:
     void draw_compass_error(std::uint64_t index);
 
     void draw_measured_heading();
+    void advance_cfo(double dt, std::uint64_t index);
     void update_amplitude();
     void fill_paths(std::vector<path_state>& out) const;
     void reconfigure(const std::function<void(scenario&)>& change);
@@ -180,8 +216,13 @@ private:
     double d_wind_to0 = 0.0;               // its direction at the start
     double d_straight_air = 0.0;
     double d_cap = 0.0;
-    double d_gust_x = 0.0, d_gust_y = 0.0; // gusts (Gauss-Markov), this slot
-    double d_compass_err = 0.0;            // flown - commanded, this slot
+    double d_gust_x = 0.0, d_gust_y = 0.0;     // gusts (Gauss-Markov), this slot
+    double d_compass_err = 0.0;                // flown - commanded, this slot
+    double d_alt = 0.0;                        // height above the emitter's ground
+    bool d_follow = false;                     // follow(): the state is a truth's
+    double d_vx = 0.0, d_vy = 0.0, d_vz = 0.0; // following: the ground velocity
+    double d_anchor_x = 0.0, d_anchor_y = 0.0; // following: world minus truth frame
+    double d_follow_time = 0.0;                // following: the last truth's time
     bool d_arrived = false, d_capped = false, d_reached = false, d_ended = false;
     double d_reached_flown = 0.0;
     void update_arrival();

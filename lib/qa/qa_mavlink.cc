@@ -80,7 +80,13 @@ TEST(mavlink, crc_extra_as_documented)
                                                     { "SET_POSITION_TARGET_LOCAL_NED",
                                                       143 },
                                                     { "POSITION_TARGET_LOCAL_NED", 140 },
-                                                    { "STATUSTEXT", 83 } };
+                                                    { "STATUSTEXT", 83 },
+                                                    { "SIM_STATE", 32 },
+                                                    { "HIL_STATE_QUATERNION", 4 },
+                                                    { "SYSTEM_TIME", 137 },
+                                                    { "PARAM_SET", 168 },
+                                                    { "PARAM_VALUE", 220 },
+                                                    { "RC_CHANNELS_OVERRIDE", 124 } };
     EXPECT_EQ(definitions().size(), documented.size());
     for (const auto& kv : documented) {
         const message_def* d = find_message(kv.first);

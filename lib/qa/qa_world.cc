@@ -522,3 +522,98 @@ TEST(world, realistic_preset_and_bad_real_flight_fields)
         }
     }
 }
+
+// A recorded sequence of true states (a climbing, turning, accelerating track in a frame
+// of the simulator's own) gives exactly the Doppler of that motion: the velocity along
+// the unit vector from the vehicle toward the emitter (3-D, the climb included), measured
+// on the synthesised samples by the independent phase-increment estimator.
+TEST(world, follow_gives_the_doppler_of_the_true_motion)
+{
+    scenario s = los_only();
+    s.fft_len = 8192;
+    s.window_len = 5000;
+    s.initial_distance_m = 800.0;
+    s.start_angle_rad = 2.0;
+    world w(s);
+    const double lambda = C / s.carrier_hz;
+    // The truth's frame is offset from the world's: the first state places the emitter.
+    const double e0 = 1234.5, n0 = -987.0;
+    double flown = 0.0, px = 0.0, py = 0.0;
+    for (int k = 0; k < 12; ++k) {
+        gr::rfseek::vehicle_truth t;
+        t.time_s = 100.0 + 0.05 * k;
+        const double speed = 8.0 + 1.5 * k, track = 0.3 * k - 1.0;
+        t.v_east_mps = speed * std::cos(track);
+        t.v_north_mps = speed * std::sin(track);
+        t.v_up_mps = (k % 3 - 1) * 2.5; // climbs, level, descents
+        t.east_m = e0 + 0.4 * k * k;
+        t.north_m = n0 - 3.0 * k;
+        t.up_m = 40.0 + 5.0 * k;
+        t.heading_rad = track + 0.2; // a crab: the yaw is not the track
+        w.follow(t);
+        // Where the scenario starts the vehicle, then the truth's displacements.
+        const double x = 800.0 * std::cos(2.0) + (t.east_m - e0);
+        const double y = 800.0 * std::sin(2.0) + (t.north_m - n0);
+        ASSERT_EQ(w.slot(), static_cast<std::uint64_t>(k));
+        EXPECT_NEAR(w.x_m(), x, 1e-9);
+        EXPECT_NEAR(w.y_m(), y, 1e-9);
+        EXPECT_DOUBLE_EQ(w.altitude_m(), t.up_m);
+        EXPECT_DOUBLE_EQ(w.heading_rad(), world::wrap(t.heading_rad));
+        if (k > 0)
+            flown += std::hypot(x - px, y - py);
+        px = x;
+        py = y;
+        EXPECT_NEAR(w.distance_flown_m(), flown, 1e-9);
+        const double d3 = std::sqrt(x * x + y * y + t.up_m * t.up_m);
+        const double expected =
+            (t.v_east_mps * -x + t.v_north_mps * -y + t.v_up_mps * -t.up_m) / d3 / lambda;
+        EXPECT_NEAR(w.los_doppler_hz(), expected, 1e-9) << "slot " << k;
+        const cvec xs = w.synthesize(5000);
+        EXPECT_NEAR(phase_increment_hz(xs, xs.size(), s.samp_rate_hz), expected, 0.05)
+            << "slot " << k;
+    }
+    EXPECT_THROW(w.advance(0.0), std::logic_error);
+}
+
+TEST(world, follow_advances_the_carrier_offset_by_the_truths_clock)
+{
+    scenario s = los_only();
+    s.cfo_hz = 100.0;
+    s.cfo_drift_hz_per_s = 2.0;
+    world w(s);
+    gr::rfseek::vehicle_truth t;
+    t.time_s = 7.0;
+    w.follow(t);
+    EXPECT_DOUBLE_EQ(w.cfo_hz(), 100.0);
+    t.time_s = 7.5; // a stall of 0.5 s on the simulator's clock: 10 slots of drift
+    w.follow(t);
+    EXPECT_NEAR(w.cfo_hz(), 101.0, 1e-12);
+    t.time_s = 7.5; // two states at the same time: no drift
+    w.follow(t);
+    EXPECT_NEAR(w.cfo_hz(), 101.0, 1e-12);
+    t.time_s = 7.4;
+    EXPECT_THROW(w.follow(t), std::invalid_argument);
+    t.time_s = 8.0;
+    t.up_m = std::nan("");
+    EXPECT_THROW(w.follow(t), std::invalid_argument);
+}
+
+TEST(world, follow_arrives_within_the_success_radius)
+{
+    scenario s = los_only();
+    s.initial_distance_m = 400.0;
+    s.start_angle_rad = 0.0; // east of the emitter
+    world w(s);
+    gr::rfseek::vehicle_truth t;
+    t.up_m = 50.0;
+    t.v_east_mps = -20.0;
+    for (int k = 0; !w.finished() && k < 1000; ++k) {
+        t.time_s = 0.05 * k;
+        t.east_m = -1.0 * k; // 20 m/s west, toward the emitter
+        w.follow(t);
+    }
+    ASSERT_TRUE(w.arrived());
+    EXPECT_NEAR(w.distance_m(), s.success_radius_m, 1.0);
+    EXPECT_NEAR(w.distance_flown_m(), 400.0 - w.distance_m(), 1e-9);
+    EXPECT_THROW(w.follow(t), std::logic_error);
+}

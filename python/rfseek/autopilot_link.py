@@ -18,6 +18,8 @@ Transports (the `link` argument), as MAVLink tools name them:
   udpin:HOST:PORT      listen (a ground station or router sends to this port; replies go
                        to the last sender)
   udpout:HOST:PORT     send to HOST:PORT (the autopilot's or router's UDP port)
+  tcp:HOST:PORT        connect to a TCP server (ArduPilot SITL's serial ports, 5760 +
+                       10 x instance and up; MAVProxy's and mavlink-router's TCP ports)
   serial:DEVICE:BAUD   a telemetry radio or the autopilot's UART (raw 8N1)
 
 tlog: when `tlog` names a file, every frame received and sent is written to it as the
@@ -41,13 +43,24 @@ from . import rfseek_python as _core
 _BAUDS = (9600, 19200, 38400, 57600, 115200, 230400, 460800, 500000, 921600, 1500000)
 
 
+def _port(text, host, owner, spec):
+    try:
+        port = int(text)
+    except ValueError:
+        port = -1
+    if not 0 <= port <= 65535 or not host:
+        raise ValueError("%s: link = %r: the port must be an integer in [0, 65535] "
+                         "after a host" % (owner, spec))
+    return port
+
+
 class mavlink_transport:
     """A byte pipe to an autopilot: udpin / udpout / serial (see the module doc)."""
 
-    def __init__(self, spec, owner="autopilot_link"):
+    def __init__(self, spec, owner="autopilot_link", connect_timeout=5.0):
         if not isinstance(spec, str) or spec.count(":") < 2:
-            raise ValueError("%s: link = %r: must be udpin:HOST:PORT, udpout:HOST:PORT or "
-                             "serial:DEVICE:BAUD" % (owner, spec))
+            raise ValueError("%s: link = %r: must be udpin:HOST:PORT, udpout:HOST:PORT, "
+                             "tcp:HOST:PORT or serial:DEVICE:BAUD" % (owner, spec))
         kind, rest = spec.split(":", 1)
         where, _, last = rest.rpartition(":")
         self.kind = kind
@@ -55,14 +68,20 @@ class mavlink_transport:
         self.peer = None
         self.sock = None
         self.fd = None
-        if kind in ("udpin", "udpout"):
+        if kind == "tcp":
+            port = _port(last, where, owner, spec)
             try:
-                port = int(last)
-            except ValueError:
-                port = -1
-            if not 0 <= port <= 65535 or not where:
-                raise ValueError("%s: link = %r: the port must be an integer in [0, 65535] "
-                                 "after a host" % (owner, spec))
+                self.sock = socket.create_connection((where, port), timeout=connect_timeout)
+            except OSError as e:
+                raise ConnectionError("%s: link %s: cannot connect: %s (is the autopilot "
+                                      "or its simulator running there?)"
+                                      % (owner, spec, e.strerror or e)) from None
+            self.sock.setsockopt(socket.IPPROTO_TCP, socket.TCP_NODELAY, 1)
+            self.sock.settimeout(2.0)  # sends block at most this long; reads are selected
+            self.peer = (where, port)
+            self.local = self.sock.getsockname()
+        elif kind in ("udpin", "udpout"):
+            port = _port(last, where, owner, spec)
             self.sock = socket.socket(socket.AF_INET, socket.SOCK_DGRAM)
             if kind == "udpin":
                 self.sock.bind((where, port))
@@ -99,7 +118,7 @@ class mavlink_transport:
             termios.tcsetattr(self.fd, termios.TCSANOW, attrs)
             self.local = where
         else:
-            raise ValueError("%s: link = %r: the kind must be udpin, udpout or serial"
+            raise ValueError("%s: link = %r: the kind must be udpin, udpout, tcp or serial"
                              % (owner, spec))
 
     def fileno(self):
@@ -108,10 +127,15 @@ class mavlink_transport:
     def recv(self):
         """(bytes waiting or b'', the sender's address or None)."""
         try:
+            if self.kind == "tcp":
+                data = self.sock.recv(65536)
+                if not data:
+                    raise ConnectionError("%s: closed by the other end" % self.spec)
+                return data, None
             if self.sock is not None:
                 return self.sock.recvfrom(65536)
             return os.read(self.fd, 4096), None
-        except (BlockingIOError, InterruptedError):
+        except (BlockingIOError, InterruptedError, socket.timeout):
             return b"", None
 
     def answer(self, addr):
@@ -120,7 +144,9 @@ class mavlink_transport:
             self.peer = addr
 
     def send(self, data):
-        if self.sock is not None:
+        if self.kind == "tcp":
+            self.sock.sendall(data)
+        elif self.sock is not None:
             if self.peer is None:
                 return False  # udpin: nobody has spoken yet
             self.sock.sendto(data, self.peer)
@@ -184,7 +210,8 @@ class autopilot_link(gr.basic_block):
                  target_system=1, target_component=1, own_system=1, own_component=191,
                  airspeed_mps=0.0, link_timeout_s=0.5, ack_timeout_s=0.3, retries=3,
                  signing_key="", tlog="", time_scale=1.0, heading_accel_mps2=6.0,
-                 pitch_deg=5.0, thrust=0.5, command_timeout_s=2.0):
+                 pitch_deg=5.0, thrust=0.5, command_timeout_s=2.0, turn_bank_deg=0.0,
+                 turn_speed_mps=0.0):
         gr.basic_block.__init__(self, name="autopilot_link", in_sig=None, out_sig=None)
         cfg = _core.autopilot_config()
         try:
@@ -209,6 +236,8 @@ class autopilot_link(gr.basic_block):
         cfg.heading_accel_mps2 = float(heading_accel_mps2)
         cfg.pitch_deg = float(pitch_deg)
         cfg.thrust = float(thrust)
+        cfg.turn_bank_deg = float(turn_bank_deg)
+        cfg.turn_speed_mps = float(turn_speed_mps)
         cfg.command_timeout_s = float(command_timeout_s)
         if signing_key:
             try:

@@ -300,7 +300,10 @@ const out = [];
             os.close(slave)
 
     def test_bad_parameters(self):
-        for kw, word in (({"link": "tcp:1.2.3.4:5"}, "link"),
+        for kw, word in (({"link": "tcpin:1.2.3.4:5"}, "link"),
+                         ({"link": "tcp:127.0.0.1:x"}, "port"),
+                         ({"turn_bank_deg": 40}, "turn_bank_deg"),
+                         ({"turn_bank_deg": 10}, "turn_speed_mps"),
                          ({"link": "udpin:127.0.0.1:70000"}, "port"),
                          ({"link": "serial:/dev/ttyS0:12345"}, "baud"),
                          ({"family": "inav"}, "family"),
@@ -327,6 +330,14 @@ const out = [];
         with self.assertRaises(OSError) as cm:
             rfseek.autopilot_link("serial:/dev/rfseek-no-such-device:57600")
         self.assertIn("/dev/rfseek-no-such-device", str(cm.exception))
+        # A TCP server that is not there: refused at once, the cause named.
+        s = socket.socket(socket.AF_INET, socket.SOCK_STREAM)
+        s.bind(("127.0.0.1", 0))
+        port = s.getsockname()[1]
+        s.close()
+        with self.assertRaises(ConnectionError) as cm:
+            rfseek.autopilot_link("tcp:127.0.0.1:%d" % port)
+        self.assertIn("cannot connect", str(cm.exception))
 
     def test_done_and_a_silent_controller_stop_commands(self):
         p = pair(family="ardupilot_copter", command_timeout_s=0.5)

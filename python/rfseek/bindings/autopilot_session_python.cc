@@ -4,7 +4,7 @@
  */
 
 /* BINDTOOL_HEADER_FILE(autopilot_session.h) */
-/* BINDTOOL_HEADER_FILE_HASH(9b686854cb724cd120d30eff9c88e4ea) */
+/* BINDTOOL_HEADER_FILE_HASH(516cbb6e56ef651ca2a6aade330aca59) */
 
 #include <gr-rfseek/autopilot_session.h>
 #include <pybind11/pybind11.h>
@@ -133,6 +133,15 @@ void bind_autopilot_config(py::module& m)
             "thrust",
             &autopilot_config::thrust,
             "Copter, PX4: setpoint thrust (ArduCopter GUIDED_NOGPS: 0.5 holds altitude).")
+        .def_readwrite("turn_bank_deg",
+                       &autopilot_config::turn_bank_deg,
+                       "Copter, PX4: the bank of a coordinated turn (deg, [0, 30]): the "
+                       "yaw setpoint turns at g tan(bank) / turn_speed_mps, rolled into "
+                       "the turn so that the track turns with the yaw. 0: the yaw steps.")
+        .def_readwrite("turn_speed_mps",
+                       &autopilot_config::turn_speed_mps,
+                       "Copter, PX4: the speed over the ground at pitch_deg (m/s), for "
+                       "the coordinated turn's rate.")
         .def_property(
             "signing_key",
             [](const autopilot_config& c) -> py::object {

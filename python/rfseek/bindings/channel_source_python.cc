@@ -4,7 +4,7 @@
  */
 
 /* BINDTOOL_HEADER_FILE(channel_source.h) */
-/* BINDTOOL_HEADER_FILE_HASH(77079a1adca4e199a465ae2330180c18) */
+/* BINDTOOL_HEADER_FILE_HASH(da58fd6efa9078e131ce12f97fa8dacf) */
 
 #include <gr-rfseek/channel_source.h>
 #include <pybind11/pybind11.h>
@@ -29,11 +29,13 @@ void bind_channel_source(py::module& m)
              py::arg("lockstep") = true,
              py::arg("realtime") = false,
              py::arg("speedup") = 1.0,
+             py::arg("follow_truth") = false,
              "\\param sc the run's scenario (validated; bad fields raise "
              "ValueError) \\param mode \"burst\" or \"continuous\" \\param "
              "lockstep wait for the cmd of each slot before producing the next \\param "
              "realtime pace output to real time (for live-looking demos) \\param speedup "
-             "pacing speed-up over real time, in (0, 1e6] (1: real time)")
+             "pacing speed-up over real time, in (0, 1e6] (1: real time) \\param "
+             "follow_truth follow the true state on 'truth' (a vehicle flown by SITL)")
         .def("config", &channel_source::config, "The scenario it simulates.")
         .def("mode", &channel_source::mode, "'burst' or 'continuous'.")
         .def("slot",
@@ -58,6 +60,15 @@ void bind_channel_source(py::module& m)
              &channel_source::realtime,
              "Paces its output to the sample clock.")
         .def("speedup", &channel_source::speedup, "Pacing speed-up over real time.")
+        .def("follow_truth",
+             &channel_source::follow_truth,
+             "The world follows the truth on 'truth' (a vehicle flown by SITL).")
+        .def("truth_count",
+             &channel_source::truth_count,
+             "follow_truth: truths received and kept.")
+        .def("truth_dropped_count",
+             &channel_source::truth_dropped_count,
+             "follow_truth: truths dropped (malformed, or before the last one).")
         .def("set_snr_db",
              &channel_source::set_snr_db,
              py::arg("snr_db"),

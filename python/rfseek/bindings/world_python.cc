@@ -4,7 +4,7 @@
  */
 
 /* BINDTOOL_HEADER_FILE(world.h) */
-/* BINDTOOL_HEADER_FILE_HASH(b05b3d6f15493c5032e7a466308a8447) */
+/* BINDTOOL_HEADER_FILE_HASH(68924ba9658300ff99e0b11d3d0ded50) */
 
 #include <gr-rfseek/world.h>
 #include <pybind11/complex.h>
@@ -116,6 +116,50 @@ void bind_world_wind(py::class_<gr::rfseek::world>& w)
                             "Velocity over the ground, north component (m/s).");
 }
 
+// Following a vehicle flown by something else (SITL).
+void bind_world_follow(py::module& m, py::class_<gr::rfseek::world>& w)
+{
+    using namespace gr::rfseek;
+    py::class_<vehicle_truth>(
+        m,
+        "vehicle_truth",
+        "One true state of a vehicle flown by a flight simulator: time_s (its clock), "
+        "east_m, north_m, up_m (a local level frame whose height is the emitter's "
+        "ground), v_east_mps, v_north_mps, v_up_mps (over the ground), heading_rad "
+        "(true, counter-clockwise from east).")
+        .def(py::init<>(), "A state at rest at the frame's origin, time 0.")
+        .def_readwrite(
+            "time_s", &vehicle_truth::time_s, "Time on the simulator's clock (s).")
+        .def_readwrite(
+            "east_m", &vehicle_truth::east_m, "East of the frame's origin (m).")
+        .def_readwrite(
+            "north_m", &vehicle_truth::north_m, "North of the frame's origin (m).")
+        .def_readwrite("up_m", &vehicle_truth::up_m, "Above the emitter's ground (m).")
+        .def_readwrite("v_east_mps",
+                       &vehicle_truth::v_east_mps,
+                       "Velocity over the ground, east (m/s).")
+        .def_readwrite("v_north_mps",
+                       &vehicle_truth::v_north_mps,
+                       "Velocity over the ground, north (m/s).")
+        .def_readwrite(
+            "v_up_mps", &vehicle_truth::v_up_mps, "Vertical velocity, up (m/s).")
+        .def_readwrite("heading_rad",
+                       &vehicle_truth::heading_rad,
+                       "True heading (rad, counter-clockwise from east).");
+    w.def("follow",
+          &world::follow,
+          py::arg("truth"),
+          "This slot's state is the truth (a vehicle flown by SITL): the first call "
+          "places the emitter (the vehicle where the scenario starts it), each later "
+          "one is the next slot. ValueError for a non-finite field or a time before the "
+          "last; RuntimeError once finished.");
+    w.def_property_readonly("following", &world::following, "follow() has been called.");
+    w.def_property_readonly(
+        "altitude_m", &world::altitude_m, "Height above the emitter's ground (m).");
+    w.def_property_readonly(
+        "up_mps", &world::up_mps, "Vertical speed (m/s, up); 0 unless following.");
+}
+
 } // namespace
 
 void bind_world(py::module& m)
@@ -225,4 +269,5 @@ void bind_world(py::module& m)
                 "self_arrival: the vehicle declared the run over (end_run()).");
     bind_world_wind(w);
     bind_world_methods(w);
+    bind_world_follow(m, w);
 }

@@ -1,0 +1,598 @@
+#
+# Copyright 2026 gr-rfseek authors.
+# SPDX-License-Identifier: GPL-3.0-or-later
+#
+"""Rehearsals against the real flight firmware: ArduPilot's (ArduCopter, ArduPlane) or
+PX4's (SIH quad) software-in-the-loop build flies the vehicle, with the GPS off, and the
+simulated world follows its true state (docs/live.md "Rehearsing against SITL").
+
+    find_sitl(path)      where the SITL builds are: the option, $RFSEEK_SITL, or the
+                         source tree's ../shared/sitl
+    sitl_process         one SITL binary in a scratch folder, on free ports, stopped on
+                         exit, on errors and on Ctrl-C (with everything it started)
+    mav_client           a small MAVLink client (the rehearsal's "pilot" and truth taps)
+    pilot                the take-off without GPS and the hand-over to the link, as a
+                         ground station would fly them
+    truth_reader         the simulator's true state (SIM_STATE / HIL_STATE_QUATERNION),
+                         for the world alone
+
+Truth flows one way: the truth_reader's messages go to channel_source(follow_truth=True)
+and to the scoring; the estimator, the controller and autopilot_link never see them.
+"""
+
+import atexit
+import math
+import os
+import select
+import signal
+import socket
+import subprocess
+import tempfile
+import threading
+import time
+
+from . import rfseek_python as _core
+from .autopilot_link import mavlink_transport
+
+_mav = _core.mavlink
+
+#: Where the firmware starts (ArduPilot's test site, CMAC): lat, lon (deg), altitude
+#: (m above sea level), heading (deg). The emitter's ground is the home's height.
+HOME = (-35.363261, 149.165230, 584.0, 353.0)
+EARTH_RADIUS_M = 6378137.0
+
+#: The vehicles: binary (relative to the SITL folder), how to start it, the link's
+#: family and GPS-free mode.
+VEHICLES = {
+    "arducopter": {"kind": "ardupilot", "binary": "arducopter", "model": "quad",
+                   "defaults": "copter.parm", "family": "ardupilot_copter",
+                   "mode": "GUIDED_NOGPS"},
+    "arduplane": {"kind": "ardupilot", "binary": "arduplane", "model": "plane",
+                  "defaults": "plane.parm", "family": "ardupilot_plane", "mode": "GUIDED"},
+    "px4_quad": {"kind": "px4", "binary": os.path.join("px4", "bin", "px4"),
+                 "etc": os.path.join("px4", "etc"), "autostart": 10040,
+                 "model": "sihsim_quadx", "family": "px4", "mode": "OFFBOARD"},
+}
+
+_ACK_RESULTS = {0: "accepted", 1: "temporarily rejected", 2: "denied", 3: "unsupported",
+                4: "failed", 5: "in progress", 6: "cancelled"}
+
+
+class SitlError(RuntimeError):
+    """A rehearsal that cannot go on; its message is one line naming the cause."""
+
+
+def find_sitl(path=None):
+    """The folder of the SITL builds: `path`, else $RFSEEK_SITL, else ../shared/sitl
+    beside the source tree this module was built from. SitlError if none is there."""
+    tried = []
+    for where, what in ((path, "the option"), (os.environ.get("RFSEEK_SITL"), "RFSEEK_SITL"),
+                        (_source_tree_sitl(), "the source tree's ../shared/sitl")):
+        if not where:
+            continue
+        tried.append("%s (%s)" % (where, what))
+        if os.path.isdir(where):
+            return os.path.abspath(where)
+        if path:
+            break  # an explicit folder that is not there is an error, not a fallback
+    raise SitlError("no SITL folder: tried %s; give --sitl DIR or set RFSEEK_SITL"
+                    % (", ".join(tried) or "nothing (no option, no RFSEEK_SITL, not run "
+                       "from a source tree)"))
+
+
+def _source_tree_sitl():
+    try:
+        from ._version import source_dir
+    except ImportError:
+        return None
+    return os.path.join(os.path.dirname(source_dir), "shared", "sitl") if source_dir else None
+
+
+def _port_free(port, kind):
+    s = socket.socket(socket.AF_INET, socket.SOCK_STREAM if kind == "tcp" else socket.SOCK_DGRAM)
+    if kind == "tcp":  # as a server binds: a port in TIME_WAIT is free to it
+        s.setsockopt(socket.SOL_SOCKET, socket.SO_REUSEADDR, 1)
+    try:
+        s.bind(("127.0.0.1", port))
+        return True
+    except OSError:
+        return False
+    finally:
+        s.close()
+
+
+# Processes started by this interpreter and not yet stopped: stopped at exit.
+_LIVE = set()
+
+
+@atexit.register
+def _stop_all():
+    for p in list(_LIVE):
+        p.stop()
+
+
+class sitl_process:
+    """One SITL binary of `vehicle` (a key of VEHICLES) from the folder `sitl_dir`, run in
+    a scratch folder with the GPS off, `speedup` times faster than real time, with an
+    optional SITL wind (speed m/s, the compass direction it blows from in degrees).
+
+    ArduPilot: instance `instance` (None: the first whose ports are free) serves
+    MAVLink on TCP 5760 + 10 i (the pilot), 5762 + 10 i (the truth) and 5763 + 10 i (the
+    link). PX4 SIH: UDP, the pilot on 14550, the link on 14540, the truth on 19410
+    (instance 0 only). stop() ends it and its children; so do exit, errors and Ctrl-C
+    in the program that started it (use it as a context manager)."""
+
+    def __init__(self, vehicle, sitl_dir=None, speedup=1.0, wind=None, instance=None,
+                 home=HOME, keep=False, params=None):
+        if vehicle not in VEHICLES:
+            raise ValueError("vehicle = %r: must be one of %s" % (vehicle, ", ".join(VEHICLES)))
+        self.vehicle = vehicle
+        self.spec = VEHICLES[vehicle]
+        self.dir = find_sitl(sitl_dir)
+        if not (isinstance(speedup, (int, float)) and 1.0 <= speedup <= 100.0):
+            raise ValueError("speedup = %r: must be in [1, 100]" % (speedup,))
+        if self.spec["kind"] == "px4" and speedup != 1.0:
+            # PX4 SIH runs in lockstep with the host clock; PX4_SIM_SPEED_FACTOR scales it.
+            pass
+        self.speedup = float(speedup)
+        if wind is not None:
+            speed, frm = wind
+            if not (0.0 <= speed <= 30.0 and math.isfinite(frm)):
+                raise ValueError("wind = %r: the speed must be in [0, 30] m/s and the "
+                                 "direction finite (deg, where it blows from)" % (wind,))
+        self.wind = wind
+        self.home = home
+        self.keep = keep
+        self.params = dict(params or {})
+        self.instance = instance
+        self.proc = None
+        self.workdir = None
+        binary = os.path.join(self.dir, self.spec["binary"])
+        if not os.path.isfile(binary):
+            raise SitlError("SITL binary %s: not found" % binary)
+        if not os.access(binary, os.X_OK):
+            raise SitlError("SITL binary %s: not executable" % binary)
+        self.binary = binary
+
+    # --- ports ---
+    def _ports(self, i):
+        if self.spec["kind"] == "ardupilot":
+            return [("tcp", 5760 + 10 * i), ("tcp", 5762 + 10 * i), ("tcp", 5763 + 10 * i)]
+        return [("udp", 14550), ("udp", 14540), ("udp", 19410), ("udp", 18570),
+                ("udp", 14580), ("udp", 19450)]
+
+    def _choose_instance(self):
+        if self.spec["kind"] == "px4":
+            if self.instance not in (None, 0):
+                raise ValueError("instance = %r: PX4 SIH runs as instance 0 only"
+                                 % (self.instance,))
+            candidates = [0]
+        else:
+            candidates = [self.instance] if self.instance is not None else range(0, 20)
+        for i in candidates:
+            busy = [p for kind, p in self._ports(i) if not _port_free(p, kind)]
+            if not busy:
+                return i
+            if self.instance is not None or self.spec["kind"] == "px4":
+                raise SitlError("port %d already in use (another SITL or ground station?); "
+                                "stop it%s" % (busy[0], "" if self.spec["kind"] == "px4"
+                                                else " or choose another --instance"))
+        raise SitlError("no free SITL instance: ports 5760-5953 are all in use")
+
+    @property
+    def pilot_link(self):
+        if self.spec["kind"] == "ardupilot":
+            return "tcp:127.0.0.1:%d" % (5760 + 10 * self.instance)
+        return "udpin:127.0.0.1:14550"
+
+    @property
+    def truth_link(self):
+        if self.spec["kind"] == "ardupilot":
+            return "tcp:127.0.0.1:%d" % (5762 + 10 * self.instance)
+        return "udpin:127.0.0.1:19410"
+
+    @property
+    def link(self):
+        """The link for autopilot_link (a port of its own, as a companion computer's)."""
+        if self.spec["kind"] == "ardupilot":
+            return "tcp:127.0.0.1:%d" % (5763 + 10 * self.instance)
+        return "udpin:127.0.0.1:14540"
+
+    # --- life ---
+    def start(self):
+        self.instance = self._choose_instance()
+        self.workdir = tempfile.mkdtemp(prefix="rfseek-sitl-%s-" % self.vehicle)
+        env = dict(os.environ)
+        if self.spec["kind"] == "ardupilot":
+            extra = os.path.join(self.workdir, "rfseek.parm")
+            # The truth and the link on SERIAL1 and SERIAL2 at 921600 baud: ArduPilot
+            # fits its streams to a port's baud rate (57600 by default), which would
+            # thin SIM_STATE to about 12 Hz.
+            params = {"SIM_GPS1_ENABLE": 0, "SERIAL1_BAUD": 921, "SERIAL2_BAUD": 921}
+            if self.wind is not None:
+                params.update(SIM_WIND_SPD=self.wind[0], SIM_WIND_DIR=self.wind[1] % 360.0)
+            params.update(self.params)
+            with open(extra, "w") as f:
+                for k, v in params.items():
+                    f.write("%s %s\n" % (k, v))
+            lat, lon, alt, hdg = self.home
+            cmd = [self.binary, "--model", self.spec["model"],
+                   "--defaults", "%s,%s" % (os.path.join(self.dir, self.spec["defaults"]), extra),
+                   "--home", "%.7f,%.7f,%.1f,%.0f" % (lat, lon, alt, hdg),
+                   "--speedup", "%g" % self.speedup, "-I%d" % self.instance, "--wipe"]
+        else:
+            env.update(PX4_SYS_AUTOSTART=str(self.spec["autostart"]),
+                       PX4_SIM_MODEL=self.spec["model"], PX4_PARAM_SENS_EN_GPSSIM="0",
+                       PX4_PARAM_SYS_HAS_GPS="0", PX4_SIM_SPEED_FACTOR="%g" % self.speedup)
+            lat, lon, alt, _ = self.home
+            env.update(PX4_HOME_LAT="%.7f" % lat, PX4_HOME_LON="%.7f" % lon,
+                       PX4_HOME_ALT="%.1f" % alt)
+            for k, v in self.params.items():
+                env["PX4_PARAM_%s" % k] = str(v)
+            cmd = [self.binary, "-d", os.path.join(self.dir, self.spec["etc"])]
+        self.log_path = os.path.join(self.workdir, "sitl.log")
+        log = open(self.log_path, "wb")
+        try:
+            self.proc = subprocess.Popen(cmd, cwd=self.workdir, env=env, stdout=log,
+                                         stderr=subprocess.STDOUT, stdin=subprocess.DEVNULL,
+                                         start_new_session=True)
+        except OSError as e:
+            raise SitlError("cannot start %s: %s" % (self.binary, e.strerror)) from None
+        finally:
+            log.close()
+        _LIVE.add(self)
+        return self
+
+    def alive(self):
+        return self.proc is not None and self.proc.poll() is None
+
+    def log_tail(self, lines=5):
+        try:
+            with open(self.log_path, "rb") as f:
+                return b"\n".join(f.read().splitlines()[-lines:]).decode(errors="replace")
+        except OSError:
+            return ""
+
+    def stop(self):
+        """Stop the firmware and every process of its session; remove the scratch folder
+        (unless keep)."""
+        _LIVE.discard(self)
+        if self.proc is not None and self.proc.poll() is None:
+            for sig, wait in ((signal.SIGTERM, 3.0), (signal.SIGKILL, 3.0)):
+                try:
+                    os.killpg(self.proc.pid, sig)
+                except ProcessLookupError:
+                    break
+                try:
+                    self.proc.wait(wait)
+                    break
+                except subprocess.TimeoutExpired:
+                    continue
+        if self.proc is not None:
+            try:  # anything left in its process group
+                os.killpg(self.proc.pid, signal.SIGKILL)
+            except (ProcessLookupError, PermissionError):
+                pass
+        if self.workdir and not self.keep:
+            import shutil
+            shutil.rmtree(self.workdir, ignore_errors=True)
+            self.workdir = None
+
+    def __enter__(self):
+        return self.start() if self.proc is None else self
+
+    def __exit__(self, *exc):
+        self.stop()
+        return False
+
+
+def lla_to_local(lat, lon, alt, home=HOME):
+    """(east, north, up) in m of a point relative to `home` (a flat earth about it: the
+    rehearsal's few km)."""
+    lat0, lon0, alt0 = math.radians(home[0]), math.radians(home[1]), home[2]
+    north = (math.radians(lat) - lat0) * EARTH_RADIUS_M
+    east = (math.radians(lon) - lon0) * EARTH_RADIUS_M * math.cos(lat0)
+    return east, north, alt - alt0
+
+
+class mav_client:
+    """A MAVLink client on `spec` (see autopilot_link's transports), speaking as a ground
+    station (system 255, component 190) to the autopilot (system 1, component 1).
+    Frames of any other system or component are ignored (the autopilot forwards the
+    companion's heartbeat to its other ports)."""
+
+    def __init__(self, spec, connect_timeout=10.0, sysid=255, compid=190):
+        deadline = time.monotonic() + connect_timeout
+        while True:
+            try:
+                self.transport = mavlink_transport(spec, "sitl", connect_timeout=1.0)
+                break
+            except ConnectionError:
+                if time.monotonic() > deadline:
+                    raise SitlError("%s: the SITL never accepted a connection in %.0f s"
+                                    % (spec, connect_timeout)) from None
+                time.sleep(0.1)
+        self.parser = _mav.parser()
+        self.hdr = (sysid, compid)
+        self.seq = 0
+        self.last = {}       # message name -> the latest message
+        self.time_boot_ms = None
+        self.text = []       # STATUSTEXT lines
+
+    def send(self, name, **fields):
+        m = _mav.message(name)
+        for k, v in fields.items():
+            if isinstance(v, (list, tuple)):
+                for i, x in enumerate(v):
+                    m.set(k, x, i)
+            elif isinstance(v, str):
+                m.set_text(k, v)
+            else:
+                m.set(k, v)
+        self.transport.send(_mav.encode(m, _mav.header(self.seq % 256, *self.hdr)))
+        self.seq += 1
+
+    def poll(self, timeout=0.05):
+        """Messages from the autopilot within `timeout` s (a list)."""
+        out = []
+        ready, _, _ = select.select([self.transport.fileno()], [], [], timeout)
+        if not ready:
+            return out
+        data, addr = self.transport.recv()
+        for f in self.parser.push(data):
+            if not f.known() or (f.sysid, f.compid) != (1, 1):
+                continue
+            self.transport.answer(addr)
+            m = f.decode()
+            self.last[m.name] = m
+            if m.name in ("ATTITUDE", "SYSTEM_TIME"):
+                self.time_boot_ms = int(m.get("time_boot_ms"))
+            if m.name == "STATUSTEXT":
+                self.text.append(m.get_text("text"))
+            out.append(m)
+        return out
+
+    def wait(self, name, timeout, pred=None):
+        """The next `name` (for which pred holds) within `timeout` s of wall time, or
+        None."""
+        deadline = time.monotonic() + timeout
+        while time.monotonic() < deadline:
+            for m in self.poll(min(0.05, max(0.0, deadline - time.monotonic()))):
+                if m.name == name and (pred is None or pred(m)):
+                    return m
+        return None
+
+    def command(self, command, params=(), timeout=2.0, tries=3):
+        """COMMAND_LONG; its COMMAND_ACK result (0: accepted), or None without an ack."""
+        p = list(params) + [0.0] * (7 - len(params))
+        for _ in range(tries):
+            self.send("COMMAND_LONG", target_system=1, target_component=1, command=command,
+                      **{"param%d" % (i + 1): p[i] for i in range(7)})
+            ack = self.wait("COMMAND_ACK", timeout, lambda m: int(m.get("command")) == command)
+            if ack is not None:
+                return int(ack.get("result"))
+        return None
+
+    def set_interval(self, msgid, hz):
+        return self.command(511, (msgid, 1e6 / hz))
+
+    def close(self):
+        self.transport.close()
+
+
+def _quat_yaw(w, x, y, z):
+    return math.atan2(2.0 * (w * z + x * y), 1.0 - 2.0 * (y * y + z * z))
+
+
+class pilot:
+    """What a ground station and its pilot do before the seek: take off without GPS,
+    climb to `altitude_m` above home, and hand the vehicle over to the link in its
+    GPS-free mode. Then it stays on the line to watch (altitude, mode) and, at the end,
+    to land or disarm. Every wait is on the autopilot's clock (time_boot_ms), so a
+    speed-up changes nothing; `wall_timeout_s` bounds each step in host time.
+
+    ArduCopter: ALT_HOLD, an ordinary arm (EKF3 runs without GPS), throttle 1800 by
+    RC_CHANNELS_OVERRIDE until the height, 1500 (hold), GUIDED_NOGPS, the override
+    released. ArduPlane: FBWA (FLY_BY_WIRE_A), a forced arm (ordinary arming is refused without GPS),
+    full throttle by override until the height, GUIDED (it holds the height it was
+    entered at), released. PX4: a level SET_ATTITUDE_TARGET stream at take-off thrust,
+    OFFBOARD, arm, climb, hover thrust until the link's own stream takes over."""
+
+    def __init__(self, proc, altitude_m=50.0, wall_timeout_s=120.0, log=None):
+        if not (10.0 <= altitude_m <= 500.0):
+            raise ValueError("altitude_m = %r: must be in [10, 500] m" % (altitude_m,))
+        self.proc = proc
+        self.kind = proc.spec["kind"]
+        self.vehicle = proc.vehicle
+        self.altitude_m = float(altitude_m)
+        self.wall_timeout_s = float(wall_timeout_s)
+        self.log = log or (lambda text: None)
+        self.client = mav_client(proc.pilot_link, connect_timeout=min(30.0, wall_timeout_s))
+        self.hover_thrust = 0.5
+
+    # --- helpers on the autopilot's clock ---
+    def clock(self):
+        """The autopilot's clock (s since its boot), or None before it spoke."""
+        return self._clock()
+
+    def _clock(self):
+        return None if self.client.time_boot_ms is None else self.client.time_boot_ms / 1e3
+
+    def _until(self, what, done, every_s=0.1, action=None, sim_timeout_s=300.0):
+        """Poll until done() holds; action() every every_s of the autopilot's clock."""
+        wall_end = time.monotonic() + self.wall_timeout_s
+        start, last = None, None
+        while True:
+            if not self.proc.alive():
+                raise SitlError("the SITL stopped while %s: %s" % (what, self.proc.log_tail(1)))
+            self.client.poll(0.02)
+            now = self._clock()
+            if now is not None:
+                start = now if start is None else start
+                if action is not None and (last is None or now - last >= every_s):
+                    last = now
+                    action()
+                if done():
+                    return
+                if now - start > sim_timeout_s:
+                    raise SitlError("%s: not done after %.0f s of the autopilot's clock%s"
+                                    % (what, sim_timeout_s, self._why()))
+            if time.monotonic() > wall_end:
+                raise SitlError("%s: the SITL did not answer within %.0f s%s"
+                                % (what, self.wall_timeout_s, self._why()))
+
+    def _why(self):
+        return (" (it said: %s)" % self.client.text[-1]) if self.client.text else ""
+
+    def _set_mode(self, name):
+        number = _core.autopilot_mode_number(self.proc.spec["family"], name)
+        if self.kind == "px4":
+            result = self.client.command(176, (1, (number >> 16) & 0xFF, (number >> 24) & 0xFF))
+        else:
+            result = self.client.command(176, (1, number))
+        if result != 0:
+            raise SitlError("mode %s refused (%s)%s" % (
+                name, _ACK_RESULTS.get(result, "no answer") if result is not None
+                else "no answer", self._why()))
+        self.log("mode %s" % name)
+
+    def _arm(self, force=False):
+        result = [None]
+
+        def attempt():
+            result[0] = self.client.command(400, (1, 21196 if force else 0), timeout=1.0, tries=1)
+
+        self._until("arming", lambda: result[0] == 0, every_s=2.0, action=attempt,
+                    sim_timeout_s=90.0)
+        self.log("armed%s at %.1f s" % (" (forced: no GPS)" if force else "", self._clock()))
+
+    def _rc(self, throttle):
+        self.client.send("RC_CHANNELS_OVERRIDE", target_system=1, target_component=1,
+                         chan1_raw=1500, chan2_raw=1500, chan3_raw=throttle, chan4_raw=1500)
+
+    def _release_rc(self):
+        self.client.send("RC_CHANNELS_OVERRIDE", target_system=1, target_component=1)
+
+    def height(self):
+        """The autopilot's own height above home (barometric), or None."""
+        g = self.client.last.get("GLOBAL_POSITION_INT")
+        return None if g is None else g.get("relative_alt") / 1000.0
+
+    def _attitude_target(self, thrust, yaw=None):
+        q = (1.0, 0.0, 0.0, 0.0) if yaw is None else (
+            math.cos(yaw / 2), 0.0, 0.0, math.sin(yaw / 2))
+        self.client.send("SET_ATTITUDE_TARGET", target_system=1, target_component=1,
+                         type_mask=7, q=q, thrust=thrust)
+
+    # --- the flight ---
+    def take_off(self):
+        c = self.client
+        if c.wait("HEARTBEAT", self.wall_timeout_s) is None:
+            raise SitlError("the SITL never sent a heartbeat in %.0f s" % self.wall_timeout_s)
+        for msgid, hz in ((30, 10), (33, 4), (2, 2)):  # ATTITUDE, GLOBAL_POSITION_INT, SYSTEM_TIME
+            c.set_interval(msgid, hz)
+        above = lambda: (self.height() or 0.0) >= self.altitude_m - 1.0
+        if self.vehicle == "arducopter":
+            self._set_mode("ALT_HOLD")
+            self._arm()
+            self._until("climbing to %.0f m" % self.altitude_m, above,
+                        action=lambda: self._rc(1800), sim_timeout_s=180.0)
+            self._rc(1500)
+            self._set_mode("GUIDED_NOGPS")
+            self._release_rc()
+        elif self.vehicle == "arduplane":
+            # Forced at once, the plane took off before its attitude had settled and
+            # flew into the ground: 20 s on the autopilot's clock first.
+            self._until("letting the attitude settle", lambda: self._clock() >= 20.0)
+            self._set_mode("FLY_BY_WIRE_A")
+            self._arm(force=True)
+            self._until("climbing to %.0f m" % self.altitude_m, above,
+                        action=lambda: self._rc(2000), sim_timeout_s=240.0)
+            self._set_mode("GUIDED")
+            self._release_rc()
+        else:
+            hold = lambda: self._attitude_target(0.75)
+            # PX4 enters OFFBOARD only once a setpoint stream runs: stream for 1 s first.
+            self._until("waiting for the clock", lambda: self._clock() is not None)
+            t0 = self._clock()
+            self._until("starting the setpoint stream", lambda: self._clock() - t0 >= 1.0,
+                        action=hold)
+            self._set_mode("OFFBOARD")
+            self._arm(force=True)
+            self._until("climbing to %.0f m" % self.altitude_m, above, action=hold,
+                        sim_timeout_s=120.0)
+        self.log("at %.1f m, handed over in %s at %.1f s" % (
+            self.height() or 0.0, self.proc.spec["mode"], self._clock()))
+
+    def keep_px4_hovering(self, until):
+        """PX4: stream hover setpoints until until() (the link streams its own)."""
+        self._until("handing over to the link", until,
+                    action=lambda: self._attitude_target(self.hover_thrust),
+                    sim_timeout_s=30.0)
+
+    def watch(self):
+        """Read what the autopilot sent (keeps its buffers drained); the latest height."""
+        self.client.poll(0.0)
+        return self.height()
+
+    def close(self):
+        self.client.close()
+
+
+class truth_reader:
+    """The simulator's true state on its own MAVLink connection, as "truth" dicts for
+    channel_source(follow_truth=True): ArduPilot's SIM_STATE (with the autopilot's clock
+    from the ATTITUDE sent in the same stream), PX4 SIH's HIL_STATE_QUATERNION (its
+    time_usec). Positions are east/north/up from the home (the emitter's ground is the
+    home's height); the heading is true, counter-clockwise from east.
+
+    Read by the world and the scoring only: never connect it to the estimator, the
+    controller or the link."""
+
+    def __init__(self, proc, rate_hz=50.0):
+        self.proc = proc
+        self.kind = proc.spec["kind"]
+        self.client = mav_client(proc.truth_link, connect_timeout=30.0)
+        self.rate_hz = float(rate_hz)
+        self.started = False
+        self.since_s = None
+
+    def start_streams(self, since_s=None):
+        """Ask for the truth's streams; truths before `since_s` (the autopilot's clock,
+        e.g. the hand-over) and whatever was buffered before are dropped."""
+        self.since_s = since_s
+        if self.kind == "ardupilot":
+            # SIM_STATE and ATTITUDE at the same rate: each SIM_STATE takes the clock of
+            # the ATTITUDE sent with it.
+            for msgid in (108, 30):
+                self.client.set_interval(msgid, self.rate_hz)
+        self.started = True
+
+    def read(self, timeout=0.02):
+        """The truths that arrived within `timeout` s (a list of dicts, in time order)."""
+        out = []
+        for m in self.client.poll(timeout):
+            t = self.convert(m)
+            if t is not None and (self.since_s is None or t["time"] >= self.since_s):
+                out.append(t)
+        return out
+
+    def convert(self, m):
+        if m.name == "SIM_STATE" and self.client.time_boot_ms is not None:
+            lat = m.get("lat_int") / 1e7 if m.get("lat_int") else m.get("lat")
+            lon = m.get("lon_int") / 1e7 if m.get("lon_int") else m.get("lon")
+            e, n, u = lla_to_local(lat, lon, m.get("alt"), self.proc.home)
+            return {"time": self.client.time_boot_ms / 1e3, "east": e, "north": n, "up": u,
+                    "v_east": m.get("ve"), "v_north": m.get("vn"), "v_up": -m.get("vd"),
+                    "heading": math.pi / 2 - m.get("yaw")}
+        if m.name == "HIL_STATE_QUATERNION":
+            e, n, u = lla_to_local(m.get("lat") / 1e7, m.get("lon") / 1e7,
+                                   m.get("alt") / 1e3, self.proc.home)
+            q = [m.get("attitude_quaternion", i) for i in range(4)]
+            return {"time": m.get_int("time_usec") / 1e6, "east": e, "north": n, "up": u,
+                    "v_east": m.get("vy") / 100.0, "v_north": m.get("vx") / 100.0,
+                    "v_up": -m.get("vz") / 100.0, "heading": math.pi / 2 - _quat_yaw(*q)}
+        return None
+
+    def close(self):
+        self.client.close()

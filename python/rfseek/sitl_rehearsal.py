@@ -1,0 +1,223 @@
+#
+# Copyright 2026 gr-rfseek authors.
+# SPDX-License-Identifier: GPL-3.0-or-later
+#
+"""The seek flown by the real firmware: SITL (sitl.sitl_process) flies the vehicle, the
+world follows its truth, and the receive chain, the controller and autopilot_link are
+the very blocks of a flight (docs/live.md "Rehearsing against SITL").
+
+    SITL ──true state──▶ truth_source ──truth──▶ channel_source(follow_truth) ──▶
+        doppler_estimator ──meas──▶ seeking_controller ──cmd──▶ autopilot_link ──▶ SITL
+                                               ▲─────────────nav (ATTITUDE)───────┘
+
+Only channel_source and the scoring read the truth.
+"""
+
+import math
+import threading
+import time
+
+import pmt
+from gnuradio import gr
+
+from . import rfseek_python as _core
+from .autopilot_link import autopilot_link
+from .flowgraphs import collector
+from .sitl import SitlError, pilot, sitl_process, truth_reader
+
+
+class truth_source(gr.basic_block):
+    """Message source: the simulator's true state ("truth" out) from a truth_reader, read
+    on a thread of its own; every truth is kept (truths) for the scoring and the
+    figure."""
+
+    def __init__(self, reader):
+        gr.basic_block.__init__(self, name="rfseek_truth_source", in_sig=None, out_sig=None)
+        self.reader = reader
+        self.truths = []
+        self.error = None
+        self.message_port_register_out(pmt.intern("truth"))
+        self._running = False
+        self._thread = None
+
+    def start(self):
+        self._running = True
+        self._thread = threading.Thread(target=self._run, daemon=True)
+        self._thread.start()
+        return True
+
+    def _run(self):
+        last = None
+        while self._running:
+            try:
+                got = self.reader.read(0.02)
+            except OSError as e:
+                self.error = str(e)
+                break
+            for t in got:
+                if last is not None and t["time"] <= last:
+                    continue  # the same tick's clock: one truth per tick
+                last = t["time"]
+                self.truths.append(t)
+                self.message_port_pub(pmt.intern("truth"), pmt.to_pmt(t))
+
+    def stop(self):
+        self._running = False
+        if self._thread is not None:
+            self._thread.join(timeout=1.0)
+        return True
+
+
+class sitl_loop(gr.top_block):
+    """The closed loop around a running SITL: truth -> world -> estimator -> controller
+    -> autopilot_link -> SITL. `cfg` is the controller's seeker_config; `link` the
+    autopilot_link keyword arguments."""
+
+    def __init__(self, sc, cfg, reader, link, progress_every=0):
+        gr.top_block.__init__(self, "rfseek SITL rehearsal", catch_exceptions=False)
+        self.truth = truth_source(reader)
+        self.world = _core.channel_source(sc, mode="burst", lockstep=False,
+                                          follow_truth=True)
+        self.estimator = _core.doppler_estimator(sc.samp_rate_hz, sc.window_len,
+                                                 sc.fft_len, interpolator="parabolic")
+        self.controller = _core.seeking_controller(cfg)
+        self.link = autopilot_link(**link)
+        self.collector = collector(progress_every)
+        self.connect(self.world, self.estimator)
+        self.msg_connect(self.truth, "truth", self.world, "truth")
+        self.msg_connect(self.estimator, "meas", self.controller, "meas")
+        self.msg_connect(self.controller, "cmd", self.link, "cmd")
+        self.msg_connect(self.controller, "cmd", self.world, "cmd")  # its "done" only
+        self.msg_connect(self.link, "nav", self.controller, "nav")
+        self.msg_connect(self.world, "state", self.collector, "state")
+        self.msg_connect(self.estimator, "meas", self.collector, "meas")
+        self.msg_connect(self.controller, "telemetry", self.collector, "telemetry")
+        self.msg_connect(self.controller, "status", self.collector, "status")
+
+    def finished(self):
+        s = self.collector.states
+        if not s:
+            return False
+        d = s[-1]
+        return bool((d["arrived"] and "reached" not in d) or d["capped"] or d.get("ended"))
+
+
+#: How each vehicle flies the seek: the link's settings and what the seeker believes of
+#: the vehicle (its speed over still air at those settings and its turns), measured in
+#: SITL (docs/live.md "How the firmware flies the link's commands").
+PROFILES = {
+    "arducopter": {"altitude_m": 50.0, "speed_mps": 6.3, "pitch_deg": 15.0, "thrust": 0.5,
+                   "bank_deg": 15.0, "roll_rate_deg_s": 90.0},
+    "arduplane": {"altitude_m": 100.0, "speed_mps": 22.0, "bank_deg": 31.0,
+                  "roll_rate_deg_s": 60.0, "heading_accel_mps2": 6.0},
+    "px4_quad": {"altitude_m": 50.0, "speed_mps": 6.3, "pitch_deg": 15.0, "thrust": 0.5,
+                 "bank_deg": 15.0, "roll_rate_deg_s": 90.0},
+}
+
+
+def scenario_for(vehicle, distance_m=800.0, seed=1, altitude_m=None, sets=()):
+    """The world of a rehearsal: the reference scenario from `distance_m`, the emitter
+    placed at a bearing drawn from `seed` relative to where the seek starts, the
+    vehicle's speed and turns as the seeker believes them, then `sets` (KEY=VALUE)."""
+    p = PROFILES[vehicle]
+    sc = _core.scenario()
+    sc.seed = int(seed)
+    sc.initial_distance_m = float(distance_m)
+    sc.speed_mps = p["speed_mps"]
+    sc.altitude_m = float(altitude_m if altitude_m is not None else p["altitude_m"])
+    if "bank_deg" in p:
+        sc.bank_limit_rad = math.radians(p["bank_deg"])
+        sc.roll_rate_rad_per_s = math.radians(p["roll_rate_deg_s"])
+    else:
+        sc.turn_rate_rad_per_s = math.radians(p["turn_rate_deg_s"])
+    for kv in sets:
+        key, _, value = kv.partition("=")
+        sc.set(key, value)
+    sc.validate()
+    return sc
+
+
+def rehearse(vehicle, distance_m=800.0, strategy="adaptive", seed=1, speedup=10.0,
+             wind=None, altitude_m=None, sitl_dir=None, tlog=None, self_arrival=False,
+             sets=(), progress_every=0, log=None, wall_cap_s=600.0):
+    """One seek flown by the SITL firmware of `vehicle` from `distance_m`; returns the
+    summary dict and the run's records (truths, states, statuses). Raises SitlError
+    (one line) when the SITL cannot be started, answers not, or refuses a step; every
+    process started is stopped whatever happens."""
+    log = log or (lambda text: None)
+    p = PROFILES[vehicle]
+    sc = scenario_for(vehicle, distance_m, seed, altitude_m, sets)
+    sc.self_arrival = bool(self_arrival)
+    cfg = _core.simulation.seeker_for(sc, strategy)
+    cfg.validate()
+    t_wall = time.monotonic()
+    proc = sitl_process(vehicle, sitl_dir, speedup, wind)
+    with proc:
+        log("started %s (instance %d) in %s" % (proc.binary, proc.instance, proc.workdir))
+        pl = pilot(proc, sc.altitude_m, log=log)
+        reader = truth_reader(proc)
+        pl.take_off()
+        reader.start_streams(since_s=pl.clock())
+        t_seek = time.monotonic()
+        link = {"link": proc.link, "family": proc.spec["family"], "time_scale": speedup,
+                "link_timeout_s": 2.0, "tlog": tlog or ""}
+        for k in ("pitch_deg", "thrust", "heading_accel_mps2"):
+            if k in p:
+                link[k] = p[k]
+        if "thrust" in p:  # multirotors: coordinated turns, as the seeker's turn model
+            link.update(turn_bank_deg=p["bank_deg"], turn_speed_mps=p["speed_mps"])
+        loop = sitl_loop(sc, cfg, reader, link, progress_every)
+        loop.start()
+        try:
+            if proc.spec["kind"] == "px4":
+                pl.keep_px4_hovering(lambda: loop.link.status()["state"] == "commanding")
+            while not loop.finished():
+                if not proc.alive():
+                    raise SitlError("the SITL stopped during the seek: %s" % proc.log_tail(1))
+                if loop.truth.error:
+                    raise SitlError("the truth link failed: %s" % loop.truth.error)
+                if time.monotonic() - t_seek > wall_cap_s:
+                    raise SitlError("the seek took over %.0f s of wall time" % wall_cap_s)
+                pl.watch()
+                time.sleep(0.05)
+        finally:
+            loop.stop()
+            loop.wait()
+            loop.link.close()
+            reader.close()
+            pl.close()
+    states = loop.collector.states
+    last = states[-1]
+    straight = sc.initial_distance_m - sc.success_radius_m
+    summary = {
+        "vehicle": vehicle, "strategy": strategy, "seed": seed, "speedup": speedup,
+        "distance_m": sc.initial_distance_m, "altitude_m": sc.altitude_m,
+        "wind": list(wind) if wind else None,
+        "success": bool(last["arrived"] or last.get("reached", False)),
+        "capped": bool(last["capped"]),
+        "distance_flown_m": last["distance_flown"], "ratio": last["distance_flown"] / straight,
+        "time_s": last["time"], "slots": int(last["slot"]),
+        "wall_s": time.monotonic() - t_wall, "seek_wall_s": time.monotonic() - t_seek,
+        "truths": len(loop.truth.truths),
+        "height_min_m": min(t["up"] for t in loop.truth.truths),
+        "height_max_m": max(t["up"] for t in loop.truth.truths),
+        "link": loop.link.status(),
+    }
+    return summary, {"truths": loop.truth.truths, "states": states,
+                     "status": loop.collector.status, "telemetry": loop.collector.telemetry,
+                     "meas": loop.collector.meas}
+
+
+def trajectory(summary, rec, path):
+    """The true track (the world followed the firmware's truth), as rfseek-sim draws a
+    simulated one; with a self-declared arrival, its fix and ellipse."""
+    from .flowgraphs import arrival_summary
+    from .plots import columns_from_messages, trajectory_figure
+    col = columns_from_messages(rec["states"], rec["meas"], rec["telemetry"])
+    arrival = (arrival_summary(rec["states"], rec["status"], rec["telemetry"])
+               if rec["status"] else None)
+    title = "%s SITL, GPS off: %s, %.0f m flown (ratio %.3f)%s" % (
+        summary["vehicle"], summary["strategy"], summary["distance_flown_m"],
+        summary["ratio"], ", wind %.0f m/s from %.0f deg" % tuple(summary["wind"])
+        if summary["wind"] else "")
+    trajectory_figure(col, title=title, path=path, arrival=arrival)

@@ -116,11 +116,17 @@ void autopilot_session::handle(const mavlink::frame& f, double t)
         if (std::isfinite(yaw)) {
             d_nav.push_back({ wrap_remainder(M_PI / 2 - yaw), t, d_airspeed });
             d_attitude_yaw = d_nav.back().heading_rad;
+            d_autopilot_time = m.get("time_boot_ms") / 1e3;
         }
     } else if (name == "VFR_HUD") {
         const double a = m.get("airspeed");
         if (std::isfinite(a) && a >= 0)
             d_airspeed = a;
+        const double alt = m.get("alt"), climb = m.get("climb");
+        if (std::isfinite(alt) && std::isfinite(climb)) {
+            d_alt = alt;
+            d_climb = climb;
+        }
     } else if (name == "COMMAND_ACK") {
         on_ack(m, t);
     } else if (name == "STATUSTEXT") {
@@ -377,7 +383,7 @@ mavlink::message autopilot_session::setpoint() const
     m.set("q", sr * cp * cy - cr * sp * sy, 1);
     m.set("q", cr * sp * cy + sr * cp * sy, 2);
     m.set("q", cr * cp * sy - sr * sp * cy, 3);
-    m.set("thrust", d_cfg.thrust);
+    m.set("thrust", d_thrust_sp);
     return m;
 }
 
@@ -404,6 +410,22 @@ void autopilot_session::advance_turn(double t)
     // roll in NED; the bank that turns the velocity at that rate, atan(v w / g).
     const double rate = dt > 0 ? step / dt : 0.0;
     d_roll_sp = -std::atan(d_cfg.turn_speed_mps * rate / G);
+}
+
+void autopilot_session::hold_altitude(double dt)
+{
+    d_thrust_sp = d_cfg.thrust;
+    if (!d_cfg.hold_altitude || !d_alt || !commanding()) {
+        d_alt_ref.reset();
+        d_alt_integral = 0;
+        return;
+    }
+    if (!d_alt_ref)
+        d_alt_ref = d_alt;
+    const double err = *d_alt_ref - *d_alt;
+    d_alt_integral = std::clamp(d_alt_integral + err * dt, -100.0, 100.0);
+    d_thrust_sp = std::clamp(
+        d_cfg.thrust + 0.02 * err + 0.002 * d_alt_integral - 0.05 * d_climb, 0.1, 0.9);
 }
 
 bool autopilot_session::streaming() const
@@ -507,6 +529,7 @@ std::vector<std::vector<std::uint8_t>> autopilot_session::poll(double t)
     if (commanding() && d_cfg.family == autopilot_family::ardupilot_plane)
         plane_commands(t);
     if (streaming() && t - d_last_setpoint >= d_cfg.setpoint_period_s) {
+        hold_altitude(std::clamp(t - d_last_setpoint, 0.0, 1.0));
         advance_turn(t);
         mavlink::message m = setpoint();
         m.set("time_boot_ms", std::fmod(std::max(t, 0.0) * 1000.0, 4294967296.0));

@@ -89,6 +89,13 @@ struct RFSEEK_API autopilot_config {
     //! Copter, PX4: the speed over the ground at pitch_deg (m/s), for the coordinated
     //! turn's rate; needed (> 0) when turn_bank_deg > 0.
     double turn_speed_mps = 0;
+    /*!
+     * PX4 (whose OFFBOARD attitude setpoints carry raw thrust, so that it holds no
+     * height by itself): hold the barometric height (VFR_HUD) at which commanding
+     * began, by the thrust: `thrust` (the hover thrust) + 0.02 per m of height error +
+     * 0.002 per m s of its integral - 0.05 per m/s of climb, within [0.1, 0.9].
+     */
+    bool hold_altitude = false;
     //! Message signing: sign what we send and require signed frames from the link.
     std::optional<std::array<std::uint8_t, 32>> signing_key;
     std::uint8_t signing_link_id = 0;
@@ -155,6 +162,9 @@ public:
     const autopilot_status& status() const { return d_status; }
     const mavlink::parser::counters& parser_stats() const { return d_parser.stats(); }
     const autopilot_config& config() const { return d_cfg; }
+    //! The autopilot's clock (s since its boot) in its last ATTITUDE, if any: a
+    //! rehearsal's link runs on it (a simulator's clock at its own pace).
+    std::optional<double> autopilot_time() const { return d_autopilot_time; }
 
 private:
     struct pending {
@@ -183,6 +193,7 @@ private:
     void queue_command(std::uint16_t cmd, const std::array<float, 7>& params);
     mavlink::message setpoint() const;
     void advance_turn(double t);
+    void hold_altitude(double dt);
     bool commanding() const { return d_status.state == "commanding"; }
 
     autopilot_config d_cfg;
@@ -196,8 +207,11 @@ private:
     std::optional<double> d_heading;        //!< the controller's last command
     std::optional<double> d_yaw_sp;         //!< coordinated turn: the yaw set now
     std::optional<double> d_attitude_yaw;   //!< the autopilot's last reported heading
+    std::optional<double> d_autopilot_time; //!< its last ATTITUDE time_boot_ms (s)
     double d_roll_sp = 0, d_last_turn = -1; //!< coordinated turn: roll (rad), when
-    std::optional<double> d_heading_sent;   //!< plane: last heading commanded
+    std::optional<double> d_alt, d_alt_ref; //!< VFR_HUD height; hold_altitude's aim
+    double d_climb = 0, d_alt_integral = 0, d_thrust_sp = 0.5;
+    std::optional<double> d_heading_sent; //!< plane: last heading commanded
     bool d_speed_sent = false;
     bool d_speed_commanded = false; //!< a speed of ours is in force on the autopilot
     bool d_done = false;            //!< finish() was called

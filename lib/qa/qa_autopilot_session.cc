@@ -10,6 +10,7 @@
 
 #include <gr-rfseek/autopilot_session.h>
 #include <gtest/gtest.h>
+#include <array>
 #include <cmath>
 
 using namespace gr::rfseek;
@@ -531,4 +532,134 @@ TEST(autopilot_session, signing_timestamps_never_behind_the_autopilot)
         p.push(f.data(), f.size(), out);
     ASSERT_FALSE(out.empty());
     EXPECT_GT(out[0].timestamp, 300000000000ull);
+}
+
+namespace {
+// Euler angles (roll, pitch, yaw; NED) of a SET_ATTITUDE_TARGET's quaternion.
+std::array<double, 3> euler(const mav::message& m)
+{
+    const double w = m.get("q", 0), x = m.get("q", 1), y = m.get("q", 2),
+                 z = m.get("q", 3);
+    return { std::atan2(2 * (w * x + y * z), 1 - 2 * (x * x + y * y)),
+             std::asin(2 * (w * y - z * x)),
+             std::atan2(2 * (w * z + x * y), 1 - 2 * (y * y + z * z)) };
+}
+
+std::vector<std::uint8_t> vfr_hud(fake_autopilot& ap, double alt, double climb)
+{
+    mav::message m("VFR_HUD");
+    m.set("alt", alt);
+    m.set("climb", climb);
+    return ap.frame(m);
+}
+} // namespace
+
+// A coordinated turn: the yaw setpoint turns from where the vehicle points toward the
+// command at g tan(bank) / v, banked into the turn (left, counter-clockwise: a negative
+// roll) by atan(v w / g), and levels when it is there.
+TEST(autopilot_session, coordinated_turns_for_multirotors)
+{
+    constexpr double G = 9.80665;
+    autopilot_config c;
+    c.family = autopilot_family::ardupilot_copter;
+    c.pitch_deg = 15;
+    c.turn_bank_deg = 15;
+    c.turn_speed_mps = 6;
+    autopilot_session s(c);
+    fake_autopilot ap;
+    feed(s,
+         ap.heartbeat(CUSTOM | ARMED, autopilot_mode_number(c.family, "GUIDED_NOGPS")),
+         0.0);
+    feed(s, ap.attitude(M_PI / 2), 0.0); // pointing east: heading 0 (module)
+    const double rate = G * std::tan(15 * M_PI / 180) / 6.0;
+    const double target = 1.0; // 57 deg counter-clockwise: a left turn
+    s.command(target, 0.0);
+    double last_heading = 0.0, last_t = -1;
+    bool levelled = false;
+    for (double t = 0.0; t < 6.0; t += 0.01) {
+        if (std::fmod(t, 0.1) < 0.01) // the autopilot keeps talking (link alive)
+            feed(s,
+                 ap.heartbeat(CUSTOM | ARMED,
+                              autopilot_mode_number(c.family, "GUIDED_NOGPS")),
+                 t);
+        s.command(target, t);
+        for (const auto& m : of(decode_all(s.poll(t)), "SET_ATTITUDE_TARGET")) {
+            const auto [roll, pitch, yaw] = euler(m);
+            const double heading = std::remainder(M_PI / 2 - yaw, 2 * M_PI);
+            EXPECT_NEAR(pitch, -15 * M_PI / 180, 1e-6);
+            if (last_t >= 0) {
+                const double step = heading - last_heading;
+                EXPECT_LE(step, rate * (t - last_t) + 1e-6);
+                if (heading < target - 1e-6) { // turning: the bank of that rate
+                    EXPECT_NEAR(roll, -std::atan(6.0 * step / (t - last_t) / G), 1e-4);
+                    EXPECT_LT(roll, -0.2);
+                } else {
+                    levelled = true;
+                }
+            }
+            if (levelled && heading >= target - 1e-6 && std::abs(roll) < 1e-9)
+                EXPECT_NEAR(heading, target, 1e-6);
+            last_heading = heading;
+            last_t = t;
+        }
+    }
+    EXPECT_TRUE(levelled);
+    EXPECT_NEAR(last_heading, target, 1e-6);
+    // 1 rad at 0.44 rad/s: about 2.3 s to turn, then level.
+    EXPECT_GT(target / rate, 2.0);
+}
+
+// PX4's raw thrust: the link holds the height at which commanding began, pushing the
+// thrust up when the vehicle sinks and down when it climbs.
+TEST(autopilot_session, px4_holds_its_height_by_the_thrust)
+{
+    autopilot_config c;
+    c.family = autopilot_family::px4;
+    c.thrust = 0.45;
+    c.hold_altitude = true;
+    autopilot_session s(c);
+    fake_autopilot ap;
+    feed(s,
+         ap.heartbeat(CUSTOM | ARMED, autopilot_mode_number(c.family, "OFFBOARD")),
+         0.0);
+    feed(s, vfr_hud(ap, 600.0, 0.0), 0.0);
+    s.command(0.0, 0.0);
+    auto thrust_at = [&](double t, double alt, double climb) {
+        feed(s,
+             ap.heartbeat(CUSTOM | ARMED, autopilot_mode_number(c.family, "OFFBOARD")),
+             t);
+        feed(s, vfr_hud(ap, alt, climb), t);
+        s.command(0.0, t);
+        double th = -1;
+        for (const auto& m : of(decode_all(s.poll(t)), "SET_ATTITUDE_TARGET"))
+            th = m.get("thrust");
+        return th;
+    };
+    EXPECT_NEAR(thrust_at(0.2, 600.0, 0.0), 0.45, 1e-6); // at the aim: the hover thrust
+    EXPECT_GT(thrust_at(0.4, 595.0, -1.0), 0.45 + 0.1);  // 5 m low and sinking
+    EXPECT_LT(thrust_at(0.6, 605.0, 1.0), 0.45 - 0.05);  // 5 m high and climbing
+    EXPECT_LE(thrust_at(0.8, 700.0, 5.0), 0.1 + 1e-6);   // bounded
+    // Without hold_altitude the thrust is the one set.
+    c.hold_altitude = false;
+    autopilot_session plain(c);
+    feed(plain,
+         ap.heartbeat(CUSTOM | ARMED, autopilot_mode_number(c.family, "OFFBOARD")),
+         0.0);
+    feed(plain, vfr_hud(ap, 590.0, -1.0), 0.0);
+    plain.command(0.0, 0.0);
+    for (const auto& m : of(decode_all(plain.poll(0.0)), "SET_ATTITUDE_TARGET"))
+        EXPECT_FLOAT_EQ(m.get("thrust"), 0.45);
+}
+
+TEST(autopilot_session, the_autopilots_clock_from_its_attitude)
+{
+    autopilot_session s(plane_config());
+    fake_autopilot ap;
+    EXPECT_FALSE(s.autopilot_time().has_value());
+    mav::message m("ATTITUDE");
+    m.set("time_boot_ms", 123456);
+    m.set("yaw", 0.3);
+    feed(s, ap.frame(m), 5.0);
+    ASSERT_TRUE(s.autopilot_time().has_value());
+    EXPECT_DOUBLE_EQ(*s.autopilot_time(), 123.456);
 }

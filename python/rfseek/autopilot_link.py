@@ -211,7 +211,7 @@ class autopilot_link(gr.basic_block):
                  airspeed_mps=0.0, link_timeout_s=0.5, ack_timeout_s=0.3, retries=3,
                  signing_key="", tlog="", time_scale=1.0, heading_accel_mps2=6.0,
                  pitch_deg=5.0, thrust=0.5, command_timeout_s=2.0, turn_bank_deg=0.0,
-                 turn_speed_mps=0.0):
+                 turn_speed_mps=0.0, hold_altitude=False, clock="host"):
         gr.basic_block.__init__(self, name="autopilot_link", in_sig=None, out_sig=None)
         cfg = _core.autopilot_config()
         try:
@@ -238,6 +238,7 @@ class autopilot_link(gr.basic_block):
         cfg.thrust = float(thrust)
         cfg.turn_bank_deg = float(turn_bank_deg)
         cfg.turn_speed_mps = float(turn_speed_mps)
+        cfg.hold_altitude = bool(hold_altitude)
         cfg.command_timeout_s = float(command_timeout_s)
         if signing_key:
             try:
@@ -257,6 +258,12 @@ class autopilot_link(gr.basic_block):
             raise ValueError("autopilot_link: time_scale = %r: must be in [1, 100] (1 on a "
                              "real flight)" % (time_scale,))
         self.time_scale = float(time_scale)
+        if clock not in ("host", "autopilot"):
+            raise ValueError("autopilot_link: clock = %r: must be 'host' (a flight) or "
+                             "'autopilot' (a rehearsal against a simulator)" % (clock,))
+        self.clock = clock
+        self._t = None           # the link's time so far (the autopilot clock)
+        self._ap_offset = None   # autopilot clock minus the link's, at its first ATTITUDE
         self.config = cfg
         self.session = _core.autopilot_session(cfg)
         self.tlog = tlog_writer(tlog) if tlog else None
@@ -280,7 +287,24 @@ class autopilot_link(gr.basic_block):
 
     def _now(self):
         # The link's clock: real time, or faster in a rehearsal paced at time_scale x.
-        return time.monotonic() * self.time_scale
+        host = time.monotonic() * self.time_scale
+        if self.clock == "host":
+            return host
+        # clock "autopilot": host time until the autopilot's first ATTITUDE, then its
+        # clock (time_boot_ms), carried on by host time at time_scale between its
+        # frames and never going back: rates and timeouts keep their meaning on a
+        # simulator that runs slower or faster than asked.
+        ap = self.session.autopilot_time()
+        t = host
+        if ap is not None:
+            if self._ap_offset is None:
+                self._ap_offset = ap - (self._t if self._t is not None else host)
+                self._ap_at = (ap, host)
+            elif ap != self._ap_at[0]:
+                self._ap_at = (ap, host)
+            t = self._ap_at[0] - self._ap_offset + (host - self._ap_at[1])
+        self._t = t if self._t is None else max(self._t, t)
+        return self._t
 
     def handle_cmd(self, msg):
         try:

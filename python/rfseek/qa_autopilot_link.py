@@ -299,11 +299,36 @@ const out = [];
             os.close(master)
             os.close(slave)
 
+    def test_the_autopilot_clock(self):
+        # clock "autopilot" (a rehearsal against a simulator): the link's time goes on
+        # from where it was at the first ATTITUDE, then moves as the autopilot's
+        # time_boot_ms does, whatever the host clock does, and never goes back.
+        link = rfseek.autopilot_link("udpin:127.0.0.1:0", clock="autopilot")
+        try:
+            mav = rfseek.mavlink
+
+            def attitude(ms, seq):
+                m = mav.message("ATTITUDE")
+                m.set("time_boot_ms", ms)
+                return mav.encode(m, mav.header(seq, 1, 1))
+            t1 = link._now()
+            link.session.receive(attitude(1000000, 0), t1)
+            t2 = link._now()
+            self.assertLess(t2 - t1, 0.5)
+            link.session.receive(attitude(1005000, 1), t2)
+            t3 = link._now()
+            self.assertAlmostEqual(t3 - t1, 5.0, delta=0.5)
+            link.session.receive(attitude(1004000, 2), t3)  # older: never back
+            self.assertGreaterEqual(link._now(), t3)
+        finally:
+            link.close()
+
     def test_bad_parameters(self):
         for kw, word in (({"link": "tcpin:1.2.3.4:5"}, "link"),
                          ({"link": "tcp:127.0.0.1:x"}, "port"),
                          ({"turn_bank_deg": 40}, "turn_bank_deg"),
                          ({"turn_bank_deg": 10}, "turn_speed_mps"),
+                         ({"clock": "gps"}, "clock"),
                          ({"link": "udpin:127.0.0.1:70000"}, "port"),
                          ({"link": "serial:/dev/ttyS0:12345"}, "baud"),
                          ({"family": "inav"}, "family"),

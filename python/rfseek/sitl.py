@@ -11,8 +11,6 @@ simulated world follows its true state (docs/live.md "Rehearsing against SITL").
     sitl_process         one SITL binary in a scratch folder, on free ports, stopped on
                          exit, on errors and on Ctrl-C (with everything it started)
     mav_client           a small MAVLink client (the rehearsal's "pilot" and truth taps)
-    pilot                the take-off without GPS and the hand-over to the link, as a
-                         ground station would fly them
     truth_reader         the simulator's true state (SIM_STATE / HIL_STATE_QUATERNION),
                          for the world alone
 
@@ -24,11 +22,11 @@ import atexit
 import math
 import os
 import select
+import shutil
 import signal
 import socket
 import subprocess
 import tempfile
-import threading
 import time
 
 from . import rfseek_python as _core
@@ -99,6 +97,14 @@ def _port_free(port, kind):
         return False
     finally:
         s.close()
+
+
+def _die_with_parent():
+    """In the child: the kernel kills it when the program that started it dies, even
+    by SIGKILL (a test runner's timeout), so that no SITL is ever left behind."""
+    import ctypes
+    libc = ctypes.CDLL(None, use_errno=True)
+    libc.prctl(1, signal.SIGKILL)  # PR_SET_PDEATHSIG
 
 
 # Processes started by this interpreter and not yet stopped: stopped at exit.
@@ -225,17 +231,32 @@ class sitl_process:
                        PX4_SIM_MODEL=self.spec["model"], PX4_PARAM_SENS_EN_GPSSIM="0",
                        PX4_PARAM_SYS_HAS_GPS="0", PX4_SIM_SPEED_FACTOR="%g" % self.speedup)
             lat, lon, alt, _ = self.home
+            # SIH's own origin is its home: the truth's heights are above it.
             env.update(PX4_HOME_LAT="%.7f" % lat, PX4_HOME_LON="%.7f" % lon,
-                       PX4_HOME_ALT="%.1f" % alt)
+                       PX4_HOME_ALT="%.1f" % alt, PX4_PARAM_SIH_LOC_LAT0="%.7f" % lat,
+                       PX4_PARAM_SIH_LOC_LON0="%.7f" % lon, PX4_PARAM_SIH_LOC_H0="%.1f" % alt)
             for k, v in self.params.items():
                 env["PX4_PARAM_%s" % k] = str(v)
-            cmd = [self.binary, "-d", os.path.join(self.dir, self.spec["etc"])]
+            # PX4's start-up scripts run its modules as px4-NAME, links to the px4
+            # binary found on PATH. A copied build may hold them as small files naming
+            # the target instead of links: the scratch folder gets links of its own.
+            bin_dir = os.path.join(self.workdir, "bin")
+            os.mkdir(bin_dir)
+            src = os.path.dirname(self.binary)
+            for name in os.listdir(src):
+                path = os.path.join(src, name)
+                if name == "px4" or (name.startswith("px4-") and os.path.getsize(path) <= 8):
+                    os.symlink(self.binary, os.path.join(bin_dir, name))
+                elif os.path.isfile(path):
+                    shutil.copy(path, bin_dir)
+            env["PATH"] = bin_dir + os.pathsep + env.get("PATH", "")
+            cmd = [os.path.join(bin_dir, "px4"), "-d", os.path.join(self.dir, self.spec["etc"])]
         self.log_path = os.path.join(self.workdir, "sitl.log")
         log = open(self.log_path, "wb")
         try:
             self.proc = subprocess.Popen(cmd, cwd=self.workdir, env=env, stdout=log,
                                          stderr=subprocess.STDOUT, stdin=subprocess.DEVNULL,
-                                         start_new_session=True)
+                                         start_new_session=True, preexec_fn=_die_with_parent)
         except OSError as e:
             raise SitlError("cannot start %s: %s" % (self.binary, e.strerror)) from None
         finally:
@@ -274,7 +295,6 @@ class sitl_process:
             except (ProcessLookupError, PermissionError):
                 pass
         if self.workdir and not self.keep:
-            import shutil
             shutil.rmtree(self.workdir, ignore_errors=True)
             self.workdir = None
 
@@ -336,21 +356,28 @@ class mav_client:
         """Messages from the autopilot within `timeout` s (a list)."""
         out = []
         ready, _, _ = select.select([self.transport.fileno()], [], [], timeout)
-        if not ready:
-            return out
-        data, addr = self.transport.recv()
+        while ready:  # everything waiting (UDP: one datagram a read), so as not to lag
+            data, addr = self.transport.recv()
+            if not data:
+                break
+            self._take(data, addr, out)
+            ready, _, _ = select.select([self.transport.fileno()], [], [], 0)
+        return out
+
+    def _take(self, data, addr, out):
         for f in self.parser.push(data):
             if not f.known() or (f.sysid, f.compid) != (1, 1):
                 continue
             self.transport.answer(addr)
             m = f.decode()
             self.last[m.name] = m
-            if m.name in ("ATTITUDE", "SYSTEM_TIME"):
+            if m.name == "ATTITUDE":
+                # The simulated clock. (PX4's SYSTEM_TIME counts host time since boot,
+                # not its lockstep clock: at a speed-up the two part.)
                 self.time_boot_ms = int(m.get("time_boot_ms"))
             if m.name == "STATUSTEXT":
                 self.text.append(m.get_text("text"))
             out.append(m)
-        return out
 
     def wait(self, name, timeout, pred=None):
         """The next `name` (for which pred holds) within `timeout` s of wall time, or
@@ -384,161 +411,6 @@ def _quat_yaw(w, x, y, z):
     return math.atan2(2.0 * (w * z + x * y), 1.0 - 2.0 * (y * y + z * z))
 
 
-class pilot:
-    """What a ground station and its pilot do before the seek: take off without GPS,
-    climb to `altitude_m` above home, and hand the vehicle over to the link in its
-    GPS-free mode. Then it stays on the line to watch (altitude, mode) and, at the end,
-    to land or disarm. Every wait is on the autopilot's clock (time_boot_ms), so a
-    speed-up changes nothing; `wall_timeout_s` bounds each step in host time.
-
-    ArduCopter: ALT_HOLD, an ordinary arm (EKF3 runs without GPS), throttle 1800 by
-    RC_CHANNELS_OVERRIDE until the height, 1500 (hold), GUIDED_NOGPS, the override
-    released. ArduPlane: FBWA (FLY_BY_WIRE_A), a forced arm (ordinary arming is refused without GPS),
-    full throttle by override until the height, GUIDED (it holds the height it was
-    entered at), released. PX4: a level SET_ATTITUDE_TARGET stream at take-off thrust,
-    OFFBOARD, arm, climb, hover thrust until the link's own stream takes over."""
-
-    def __init__(self, proc, altitude_m=50.0, wall_timeout_s=120.0, log=None):
-        if not (10.0 <= altitude_m <= 500.0):
-            raise ValueError("altitude_m = %r: must be in [10, 500] m" % (altitude_m,))
-        self.proc = proc
-        self.kind = proc.spec["kind"]
-        self.vehicle = proc.vehicle
-        self.altitude_m = float(altitude_m)
-        self.wall_timeout_s = float(wall_timeout_s)
-        self.log = log or (lambda text: None)
-        self.client = mav_client(proc.pilot_link, connect_timeout=min(30.0, wall_timeout_s))
-        self.hover_thrust = 0.5
-
-    # --- helpers on the autopilot's clock ---
-    def clock(self):
-        """The autopilot's clock (s since its boot), or None before it spoke."""
-        return self._clock()
-
-    def _clock(self):
-        return None if self.client.time_boot_ms is None else self.client.time_boot_ms / 1e3
-
-    def _until(self, what, done, every_s=0.1, action=None, sim_timeout_s=300.0):
-        """Poll until done() holds; action() every every_s of the autopilot's clock."""
-        wall_end = time.monotonic() + self.wall_timeout_s
-        start, last = None, None
-        while True:
-            if not self.proc.alive():
-                raise SitlError("the SITL stopped while %s: %s" % (what, self.proc.log_tail(1)))
-            self.client.poll(0.02)
-            now = self._clock()
-            if now is not None:
-                start = now if start is None else start
-                if action is not None and (last is None or now - last >= every_s):
-                    last = now
-                    action()
-                if done():
-                    return
-                if now - start > sim_timeout_s:
-                    raise SitlError("%s: not done after %.0f s of the autopilot's clock%s"
-                                    % (what, sim_timeout_s, self._why()))
-            if time.monotonic() > wall_end:
-                raise SitlError("%s: the SITL did not answer within %.0f s%s"
-                                % (what, self.wall_timeout_s, self._why()))
-
-    def _why(self):
-        return (" (it said: %s)" % self.client.text[-1]) if self.client.text else ""
-
-    def _set_mode(self, name):
-        number = _core.autopilot_mode_number(self.proc.spec["family"], name)
-        if self.kind == "px4":
-            result = self.client.command(176, (1, (number >> 16) & 0xFF, (number >> 24) & 0xFF))
-        else:
-            result = self.client.command(176, (1, number))
-        if result != 0:
-            raise SitlError("mode %s refused (%s)%s" % (
-                name, _ACK_RESULTS.get(result, "no answer") if result is not None
-                else "no answer", self._why()))
-        self.log("mode %s" % name)
-
-    def _arm(self, force=False):
-        result = [None]
-
-        def attempt():
-            result[0] = self.client.command(400, (1, 21196 if force else 0), timeout=1.0, tries=1)
-
-        self._until("arming", lambda: result[0] == 0, every_s=2.0, action=attempt,
-                    sim_timeout_s=90.0)
-        self.log("armed%s at %.1f s" % (" (forced: no GPS)" if force else "", self._clock()))
-
-    def _rc(self, throttle):
-        self.client.send("RC_CHANNELS_OVERRIDE", target_system=1, target_component=1,
-                         chan1_raw=1500, chan2_raw=1500, chan3_raw=throttle, chan4_raw=1500)
-
-    def _release_rc(self):
-        self.client.send("RC_CHANNELS_OVERRIDE", target_system=1, target_component=1)
-
-    def height(self):
-        """The autopilot's own height above home (barometric), or None."""
-        g = self.client.last.get("GLOBAL_POSITION_INT")
-        return None if g is None else g.get("relative_alt") / 1000.0
-
-    def _attitude_target(self, thrust, yaw=None):
-        q = (1.0, 0.0, 0.0, 0.0) if yaw is None else (
-            math.cos(yaw / 2), 0.0, 0.0, math.sin(yaw / 2))
-        self.client.send("SET_ATTITUDE_TARGET", target_system=1, target_component=1,
-                         type_mask=7, q=q, thrust=thrust)
-
-    # --- the flight ---
-    def take_off(self):
-        c = self.client
-        if c.wait("HEARTBEAT", self.wall_timeout_s) is None:
-            raise SitlError("the SITL never sent a heartbeat in %.0f s" % self.wall_timeout_s)
-        for msgid, hz in ((30, 10), (33, 4), (2, 2)):  # ATTITUDE, GLOBAL_POSITION_INT, SYSTEM_TIME
-            c.set_interval(msgid, hz)
-        above = lambda: (self.height() or 0.0) >= self.altitude_m - 1.0
-        if self.vehicle == "arducopter":
-            self._set_mode("ALT_HOLD")
-            self._arm()
-            self._until("climbing to %.0f m" % self.altitude_m, above,
-                        action=lambda: self._rc(1800), sim_timeout_s=180.0)
-            self._rc(1500)
-            self._set_mode("GUIDED_NOGPS")
-            self._release_rc()
-        elif self.vehicle == "arduplane":
-            # Forced at once, the plane took off before its attitude had settled and
-            # flew into the ground: 20 s on the autopilot's clock first.
-            self._until("letting the attitude settle", lambda: self._clock() >= 20.0)
-            self._set_mode("FLY_BY_WIRE_A")
-            self._arm(force=True)
-            self._until("climbing to %.0f m" % self.altitude_m, above,
-                        action=lambda: self._rc(2000), sim_timeout_s=240.0)
-            self._set_mode("GUIDED")
-            self._release_rc()
-        else:
-            hold = lambda: self._attitude_target(0.75)
-            # PX4 enters OFFBOARD only once a setpoint stream runs: stream for 1 s first.
-            self._until("waiting for the clock", lambda: self._clock() is not None)
-            t0 = self._clock()
-            self._until("starting the setpoint stream", lambda: self._clock() - t0 >= 1.0,
-                        action=hold)
-            self._set_mode("OFFBOARD")
-            self._arm(force=True)
-            self._until("climbing to %.0f m" % self.altitude_m, above, action=hold,
-                        sim_timeout_s=120.0)
-        self.log("at %.1f m, handed over in %s at %.1f s" % (
-            self.height() or 0.0, self.proc.spec["mode"], self._clock()))
-
-    def keep_px4_hovering(self, until):
-        """PX4: stream hover setpoints until until() (the link streams its own)."""
-        self._until("handing over to the link", until,
-                    action=lambda: self._attitude_target(self.hover_thrust),
-                    sim_timeout_s=30.0)
-
-    def watch(self):
-        """Read what the autopilot sent (keeps its buffers drained); the latest height."""
-        self.client.poll(0.0)
-        return self.height()
-
-    def close(self):
-        self.client.close()
-
-
 class truth_reader:
     """The simulator's true state on its own MAVLink connection, as "truth" dicts for
     channel_source(follow_truth=True): ArduPilot's SIM_STATE (with the autopilot's clock
@@ -561,11 +433,20 @@ class truth_reader:
         """Ask for the truth's streams; truths before `since_s` (the autopilot's clock,
         e.g. the hand-over) and whatever was buffered before are dropped."""
         self.since_s = since_s
-        if self.kind == "ardupilot":
-            # SIM_STATE and ATTITUDE at the same rate: each SIM_STATE takes the clock of
-            # the ATTITUDE sent with it.
-            for msgid in (108, 30):
-                self.client.set_interval(msgid, self.rate_hz)
+        # The truth and ATTITUDE at the same rate: each truth takes the clock of the
+        # ATTITUDE sent with it (SIM_STATE has no time; PX4 SIH's HIL_STATE_QUATERNION
+        # leaves time_usec 0). ArduPlane (a 50 Hz main loop) refuses 50 Hz: the rate
+        # halves until one is accepted.
+        rate = self.rate_hz
+        ids = (108, 30) if self.kind == "ardupilot" else (115, 30)
+        while not all(self.client.set_interval(m, rate) == 0 for m in ids):
+            rate /= 2.0
+            if rate < 5.0:
+                raise SitlError("the SITL refuses to stream its truth at 5 Hz or more "
+                                "on %s%s" % (self.proc.truth_link, (
+                                    " (it said: %s)" % self.client.text[-1])
+                                    if self.client.text else ""))
+        self.rate_hz = rate
         self.started = True
 
     def read(self, timeout=0.02):
@@ -586,10 +467,14 @@ class truth_reader:
                     "v_east": m.get("ve"), "v_north": m.get("vn"), "v_up": -m.get("vd"),
                     "heading": math.pi / 2 - m.get("yaw")}
         if m.name == "HIL_STATE_QUATERNION":
+            usec = m.get_int("time_usec")
+            if usec <= 0 and self.client.time_boot_ms is None:
+                return None
             e, n, u = lla_to_local(m.get("lat") / 1e7, m.get("lon") / 1e7,
                                    m.get("alt") / 1e3, self.proc.home)
             q = [m.get("attitude_quaternion", i) for i in range(4)]
-            return {"time": m.get_int("time_usec") / 1e6, "east": e, "north": n, "up": u,
+            return {"time": usec / 1e6 if usec > 0 else self.client.time_boot_ms / 1e3,
+                    "east": e, "north": n, "up": u,
                     "v_east": m.get("vy") / 100.0, "v_north": m.get("vx") / 100.0,
                     "v_up": -m.get("vz") / 100.0, "heading": math.pi / 2 - _quat_yaw(*q)}
         return None

@@ -23,7 +23,8 @@ from gnuradio import gr
 from . import rfseek_python as _core
 from .autopilot_link import autopilot_link
 from .flowgraphs import collector
-from .sitl import SitlError, pilot, sitl_process, truth_reader
+from .sitl import SitlError, sitl_process, truth_reader
+from .sitl_pilot import pilot
 
 
 class truth_source(gr.basic_block):
@@ -108,10 +109,16 @@ class sitl_loop(gr.top_block):
 PROFILES = {
     "arducopter": {"altitude_m": 50.0, "speed_mps": 6.3, "pitch_deg": 15.0, "thrust": 0.5,
                    "bank_deg": 15.0, "roll_rate_deg_s": 90.0},
-    "arduplane": {"altitude_m": 100.0, "speed_mps": 22.0, "bank_deg": 31.0,
-                  "roll_rate_deg_s": 60.0, "heading_accel_mps2": 6.0},
-    "px4_quad": {"altitude_m": 50.0, "speed_mps": 6.3, "pitch_deg": 15.0, "thrust": 0.5,
-                 "bank_deg": 15.0, "roll_rate_deg_s": 90.0},
+    # ArduPlane's GUIDED heading loop at its default gain (GUIDED_P 5000) settles a 10
+    # deg step in about 10 s (a time constant near 3 s); at 15000, in 2-3 s, as the
+    # seeker's turn model (a 31 deg bank at 60 deg/s of roll) flies it.
+    "arduplane": {"altitude_m": 100.0, "speed_mps": 23.4, "bank_deg": 31.0,
+                  "roll_rate_deg_s": 60.0, "heading_accel_mps2": 6.0,
+                  "params": {"GUIDED_P": 15000}},
+    # PX4 SIH's quad flies 2.7 m/s at 15 deg of pitch; its lockstep simulator kept up
+    # with about 4 x real time here (at 10 x its truth and telemetry came late).
+    "px4_quad": {"altitude_m": 50.0, "speed_mps": 2.7, "pitch_deg": 15.0, "thrust": 0.5,
+                 "bank_deg": 15.0, "roll_rate_deg_s": 90.0, "max_speedup": 4.0},
 }
 
 
@@ -150,22 +157,26 @@ def rehearse(vehicle, distance_m=800.0, strategy="adaptive", seed=1, speedup=10.
     sc.self_arrival = bool(self_arrival)
     cfg = _core.simulation.seeker_for(sc, strategy)
     cfg.validate()
+    speedup = min(speedup, p.get("max_speedup", speedup))
     t_wall = time.monotonic()
-    proc = sitl_process(vehicle, sitl_dir, speedup, wind)
+    proc = sitl_process(vehicle, sitl_dir, speedup, wind, params=p.get("params"))
     with proc:
         log("started %s (instance %d) in %s" % (proc.binary, proc.instance, proc.workdir))
         pl = pilot(proc, sc.altitude_m, log=log)
-        reader = truth_reader(proc)
         pl.take_off()
+        # Connected at the hand-over: nothing buffered during the take-off is read.
+        reader = truth_reader(proc)
         reader.start_streams(since_s=pl.clock())
         t_seek = time.monotonic()
         link = {"link": proc.link, "family": proc.spec["family"], "time_scale": speedup,
-                "link_timeout_s": 2.0, "tlog": tlog or ""}
+                "link_timeout_s": 2.0, "tlog": tlog or "", "clock": "autopilot"}
         for k in ("pitch_deg", "thrust", "heading_accel_mps2"):
             if k in p:
                 link[k] = p[k]
         if "thrust" in p:  # multirotors: coordinated turns, as the seeker's turn model
             link.update(turn_bank_deg=p["bank_deg"], turn_speed_mps=p["speed_mps"])
+        if proc.spec["kind"] == "px4":  # raw thrust: the link holds the height
+            link["hold_altitude"] = True
         loop = sitl_loop(sc, cfg, reader, link, progress_every)
         loop.start()
         try:

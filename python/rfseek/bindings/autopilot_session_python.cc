@@ -4,7 +4,7 @@
  */
 
 /* BINDTOOL_HEADER_FILE(autopilot_session.h) */
-/* BINDTOOL_HEADER_FILE_HASH(516cbb6e56ef651ca2a6aade330aca59) */
+/* BINDTOOL_HEADER_FILE_HASH(eb3960bb93670ce8d98be3c1e0838427) */
 
 #include <gr-rfseek/autopilot_session.h>
 #include <pybind11/pybind11.h>
@@ -56,79 +56,12 @@ void bind_autopilot_modes(py::module& m)
         "The family's mode for seeking: GUIDED, GUIDED_NOGPS or OFFBOARD.");
 }
 
-void bind_autopilot_config(py::module& m)
+// The multirotors' setpoints: attitude, thrust, coordinated turns, height.
+void bind_multirotor_fields(py::class_<autopilot_config>& c)
 {
-    py::class_<autopilot_config>(
-        m,
-        "autopilot_config",
-        "Settings of the autopilot link (docs/live.md \"Autopilot\").")
-        .def(py::init<>(), "The defaults (ArduPlane, GUIDED, system 1 component 1).")
-        .def_property(
-            "family",
-            [](const autopilot_config& c) { return to_string(c.family); },
-            [](autopilot_config& c, const std::string& f) {
-                c.family = autopilot_family_from_string(f);
-            },
-            "'ardupilot_plane', 'ardupilot_copter' or 'px4': the command path.")
-        .def_readwrite(
-            "mode", &autopilot_config::mode, "Mode to command in ('': the family's).")
-        .def_readwrite("target_system",
-                       &autopilot_config::target_system,
-                       "The autopilot's system id (reports of any other are dropped).")
-        .def_readwrite("target_component",
-                       &autopilot_config::target_component,
-                       "The autopilot's component id.")
-        .def_readwrite("own_system",
-                       &autopilot_config::own_system,
-                       "Our system id (a companion computer of the vehicle: the same as "
-                       "the autopilot's).")
-        .def_readwrite("own_component",
-                       &autopilot_config::own_component,
-                       "Our component id (191: MAV_COMP_ID_ONBOARD_COMPUTER).")
-        .def_readwrite("heartbeat_period_s",
-                       &autopilot_config::heartbeat_period_s,
-                       "Period of our HEARTBEAT (s).")
-        .def_readwrite("link_timeout_s",
-                       &autopilot_config::link_timeout_s,
-                       "Lost when nothing came from the autopilot for this long.")
-        .def_readwrite("heartbeat_timeout_s",
-                       &autopilot_config::heartbeat_timeout_s,
-                       "Lost when no HEARTBEAT came for this long.")
-        .def_readwrite("ack_timeout_s",
-                       &autopilot_config::ack_timeout_s,
-                       "A command unanswered this long is sent again (s).")
-        .def_readwrite("retries",
-                       &autopilot_config::retries,
-                       "Sends after the first before a command has failed.")
-        .def_readwrite("heading_deadband_deg",
-                       &autopilot_config::heading_deadband_deg,
-                       "ArduPlane: a heading this close to the last one commanded is not "
-                       "sent again.")
-        .def_readwrite("command_min_period_s",
-                       &autopilot_config::command_min_period_s,
-                       "ArduPlane: at least this long between two heading commands (s).")
-        .def_readwrite(
-            "setpoint_period_s",
-            &autopilot_config::setpoint_period_s,
-            "Copter, PX4: period of the attitude setpoint stream (s, at most 0.5).")
-        .def_readwrite("airspeed_mps",
-                       &autopilot_config::airspeed_mps,
-                       "Commanded airspeed (0: the autopilot's own cruise speed).")
-        .def_readwrite(
-            "heading_accel_mps2",
-            &autopilot_config::heading_accel_mps2,
-            "ArduPlane: GUIDED_CHANGE_HEADING param 3, the largest centripetal "
-            "acceleration of a heading change (m/s^2; bank up to atan(a/g)).")
-        .def_readwrite("command_timeout_s",
-                       &autopilot_config::command_timeout_s,
-                       "Without a controller command for this long, the link holds.")
-        .def_readwrite(
-            "request_streams",
-            &autopilot_config::request_streams,
-            "Ask for ATTITUDE at 20 Hz and VFR_HUD at 4 Hz when the link comes up.")
-        .def_readwrite("pitch_deg",
-                       &autopilot_config::pitch_deg,
-                       "Copter, PX4: forward pitch of the setpoint (deg).")
+    c.def_readwrite("pitch_deg",
+                    &autopilot_config::pitch_deg,
+                    "Copter, PX4: forward pitch of the setpoint (deg).")
         .def_readwrite(
             "thrust",
             &autopilot_config::thrust,
@@ -138,41 +71,125 @@ void bind_autopilot_config(py::module& m)
                        "Copter, PX4: the bank of a coordinated turn (deg, [0, 30]): the "
                        "yaw setpoint turns at g tan(bank) / turn_speed_mps, rolled into "
                        "the turn so that the track turns with the yaw. 0: the yaw steps.")
+        .def_readwrite("hold_altitude",
+                       &autopilot_config::hold_altitude,
+                       "PX4: hold the barometric height at which commanding began by "
+                       "the thrust (thrust is then the hover thrust).")
         .def_readwrite("turn_speed_mps",
                        &autopilot_config::turn_speed_mps,
                        "Copter, PX4: the speed over the ground at pitch_deg (m/s), for "
-                       "the coordinated turn's rate.")
-        .def_property(
-            "signing_key",
-            [](const autopilot_config& c) -> py::object {
-                if (!c.signing_key)
-                    return py::none();
-                return py::bytes(reinterpret_cast<const char*>(c.signing_key->data()),
-                                 32);
-            },
-            [](autopilot_config& c, const py::object& key) {
-                if (key.is_none()) {
-                    c.signing_key.reset();
-                    return;
-                }
-                const std::string k = key.cast<py::bytes>();
-                if (k.size() != 32)
-                    throw py::value_error(
-                        "autopilot_config.signing_key: must be 32 bytes "
-                        "(or None: no signing)");
-                std::array<std::uint8_t, 32> a;
-                std::copy(k.begin(), k.end(), a.begin());
-                c.signing_key = a;
-            },
-            "32-byte signing key, or None.")
-        .def_readwrite("signing_link_id",
-                       &autopilot_config::signing_link_id,
-                       "Link id of our signed frames.")
-        .def_readwrite(
-            "signing_clock_offset_s",
-            &autopilot_config::signing_clock_offset_s,
-            "Seconds from 2015-01-01 UTC to the session's time 0 (signing timestamps).")
-        .def("validate", &autopilot_config::validate, "ValueError naming a bad field.");
+                       "the coordinated turn's rate.");
+}
+
+void bind_autopilot_config(py::module& m)
+{
+    auto c =
+        py::class_<autopilot_config>(
+            m,
+            "autopilot_config",
+            "Settings of the autopilot link (docs/live.md \"Autopilot\").")
+            .def(py::init<>(), "The defaults (ArduPlane, GUIDED, system 1 component 1).")
+            .def_property(
+                "family",
+                [](const autopilot_config& c) { return to_string(c.family); },
+                [](autopilot_config& c, const std::string& f) {
+                    c.family = autopilot_family_from_string(f);
+                },
+                "'ardupilot_plane', 'ardupilot_copter' or 'px4': the command path.")
+            .def_readwrite(
+                "mode", &autopilot_config::mode, "Mode to command in ('': the family's).")
+            .def_readwrite(
+                "target_system",
+                &autopilot_config::target_system,
+                "The autopilot's system id (reports of any other are dropped).")
+            .def_readwrite("target_component",
+                           &autopilot_config::target_component,
+                           "The autopilot's component id.")
+            .def_readwrite(
+                "own_system",
+                &autopilot_config::own_system,
+                "Our system id (a companion computer of the vehicle: the same as "
+                "the autopilot's).")
+            .def_readwrite("own_component",
+                           &autopilot_config::own_component,
+                           "Our component id (191: MAV_COMP_ID_ONBOARD_COMPUTER).")
+            .def_readwrite("heartbeat_period_s",
+                           &autopilot_config::heartbeat_period_s,
+                           "Period of our HEARTBEAT (s).")
+            .def_readwrite("link_timeout_s",
+                           &autopilot_config::link_timeout_s,
+                           "Lost when nothing came from the autopilot for this long.")
+            .def_readwrite("heartbeat_timeout_s",
+                           &autopilot_config::heartbeat_timeout_s,
+                           "Lost when no HEARTBEAT came for this long.")
+            .def_readwrite("ack_timeout_s",
+                           &autopilot_config::ack_timeout_s,
+                           "A command unanswered this long is sent again (s).")
+            .def_readwrite("retries",
+                           &autopilot_config::retries,
+                           "Sends after the first before a command has failed.")
+            .def_readwrite(
+                "heading_deadband_deg",
+                &autopilot_config::heading_deadband_deg,
+                "ArduPlane: a heading this close to the last one commanded is not "
+                "sent again.")
+            .def_readwrite(
+                "command_min_period_s",
+                &autopilot_config::command_min_period_s,
+                "ArduPlane: at least this long between two heading commands (s).")
+            .def_readwrite(
+                "setpoint_period_s",
+                &autopilot_config::setpoint_period_s,
+                "Copter, PX4: period of the attitude setpoint stream (s, at most 0.5).")
+            .def_readwrite("airspeed_mps",
+                           &autopilot_config::airspeed_mps,
+                           "Commanded airspeed (0: the autopilot's own cruise speed).")
+            .def_readwrite(
+                "heading_accel_mps2",
+                &autopilot_config::heading_accel_mps2,
+                "ArduPlane: GUIDED_CHANGE_HEADING param 3, the largest centripetal "
+                "acceleration of a heading change (m/s^2; bank up to atan(a/g)).")
+            .def_readwrite("command_timeout_s",
+                           &autopilot_config::command_timeout_s,
+                           "Without a controller command for this long, the link holds.")
+            .def_readwrite(
+                "request_streams",
+                &autopilot_config::request_streams,
+                "Ask for ATTITUDE at 20 Hz and VFR_HUD at 4 Hz when the link comes up.")
+            .def_property(
+                "signing_key",
+                [](const autopilot_config& c) -> py::object {
+                    if (!c.signing_key)
+                        return py::none();
+                    return py::bytes(reinterpret_cast<const char*>(c.signing_key->data()),
+                                     32);
+                },
+                [](autopilot_config& c, const py::object& key) {
+                    if (key.is_none()) {
+                        c.signing_key.reset();
+                        return;
+                    }
+                    const std::string k = key.cast<py::bytes>();
+                    if (k.size() != 32)
+                        throw py::value_error(
+                            "autopilot_config.signing_key: must be 32 bytes "
+                            "(or None: no signing)");
+                    std::array<std::uint8_t, 32> a;
+                    std::copy(k.begin(), k.end(), a.begin());
+                    c.signing_key = a;
+                },
+                "32-byte signing key, or None.")
+            .def_readwrite("signing_link_id",
+                           &autopilot_config::signing_link_id,
+                           "Link id of our signed frames.")
+            .def_readwrite("signing_clock_offset_s",
+                           &autopilot_config::signing_clock_offset_s,
+                           "Seconds from 2015-01-01 UTC to the session's time 0 (signing "
+                           "timestamps).")
+            .def("validate",
+                 &autopilot_config::validate,
+                 "ValueError naming a bad field.");
+    bind_multirotor_fields(c);
 }
 
 } // namespace
@@ -262,6 +279,9 @@ void bind_autopilot_session(py::module& m)
             "status",
             [](const autopilot_session& s) { return status_dict(s.status()); },
             "The current status.")
+        .def("autopilot_time",
+             &autopilot_session::autopilot_time,
+             "The autopilot's clock (s since its boot) in its last ATTITUDE, or None.")
         .def(
             "parser_stats",
             [](const autopilot_session& s) {

@@ -1,0 +1,125 @@
+#!/usr/bin/python3
+#
+# Copyright 2026 gr-rfseek authors.
+# SPDX-License-Identifier: GPL-3.0-or-later
+#
+"""The seek flown by the real firmware: ArduCopter, ArduPlane and PX4 (SIH quad) SITL,
+GPS off, about 800 m, each must arrive; and the rehearsal's bad inputs, each one line,
+with every process it started stopped. Runs whenever SITL builds are found (--sitl,
+$RFSEEK_SITL, or ../shared/sitl beside the source tree); otherwise each test says it is
+skipped and why."""
+
+import os
+import shutil
+import socket
+import stat
+import subprocess
+import sys
+import tempfile
+import time
+import unittest
+
+from gnuradio import gr_unittest
+from gnuradio.rfseek import sitl, sitl_pilot, sitl_rehearsal
+
+try:
+    SITL = sitl.find_sitl()
+    WHY = ""
+except sitl.SitlError as e:
+    SITL, WHY = None, "no SITL builds here (%s)" % e
+
+
+def gone(proc, within_s=3.0):
+    """Nothing of the SITL's process group is left (its killed children may take a
+    moment to be reaped)."""
+    deadline = time.monotonic() + within_s
+    while time.monotonic() < deadline:
+        try:
+            os.killpg(proc.proc.pid, 0)
+        except ProcessLookupError:
+            return True
+        time.sleep(0.05)
+    return False
+
+
+def own_sitl_processes():
+    """PIDs of SITL binaries (from the SITL folder) still running on this machine."""
+    out = subprocess.run(["ps", "-eo", "pid,args"], capture_output=True, text=True).stdout
+    return [line for line in out.splitlines()[1:] if SITL and SITL in line]
+
+
+@unittest.skipIf(SITL is None, WHY)
+class qa_sitl(gr_unittest.TestCase):
+
+    def setUp(self):
+        self.before = own_sitl_processes()
+
+    def tearDown(self):
+        # No orphan: whatever the test did, no SITL of ours is left running.
+        self.assertEqual(own_sitl_processes(), self.before)
+
+    def fly(self, vehicle, seed):
+        summary, rec = sitl_rehearsal.rehearse(vehicle, 800.0, "adaptive", seed,
+                                               speedup=10.0, sitl_dir=SITL,
+                                               wall_cap_s=400.0)
+        sys.stderr.write("%s seed %d: %s\n" % (vehicle, seed, {
+            k: summary[k] for k in ("success", "ratio", "time_s", "wall_s",
+                                    "height_min_m", "height_max_m")}))
+        self.assertTrue(summary["success"], summary)
+        # The world followed the firmware: its track is the truth's, whose speed is
+        # the vehicle's, not the scenario's.
+        self.assertGreater(summary["truths"], 100)
+        self.assertGreater(summary["distance_flown_m"], 590.0)
+        return summary, rec
+
+    def test_arducopter_gps_off_arrives(self):
+        self.fly("arducopter", 11)
+
+    def test_arduplane_gps_off_arrives(self):
+        s, rec = self.fly("arduplane", 12)
+        self.assertGreater(s["height_min_m"], s["altitude_m"] - 20.0)
+
+    def test_px4_quad_gps_off_arrives(self):
+        self.fly("px4_quad", 13)
+
+    def test_bad_inputs_are_one_line_and_leave_nothing_behind(self):
+        with self.assertRaises(sitl.SitlError) as cm:
+            sitl.sitl_process("arducopter", "/nonexistent/rfseek-sitl")
+        self.assertIn("/nonexistent/rfseek-sitl", str(cm.exception))
+        scratch = tempfile.mkdtemp()
+        try:
+            # A SITL folder whose binary is not executable.
+            open(os.path.join(scratch, "arducopter"), "w").close()
+            with self.assertRaises(sitl.SitlError) as cm:
+                sitl.sitl_process("arducopter", scratch)
+            self.assertIn("not executable", str(cm.exception))
+            # A SITL that never answers: the pilot gives up in one line, all stopped.
+            fake = os.path.join(scratch, "arducopter")
+            with open(fake, "w") as f:
+                f.write("#!/bin/sh\nsleep 600\n")
+            os.chmod(fake, stat.S_IRWXU)
+            p = sitl.sitl_process("arducopter", scratch, instance=7)
+            with self.assertRaises(sitl.SitlError) as cm:
+                with p:
+                    sitl_pilot.pilot(p, wall_timeout_s=2.0)
+            self.assertIn("never accepted a connection", str(cm.exception))
+            self.assertTrue(gone(p))
+        finally:
+            shutil.rmtree(scratch)
+        # A port already in use, on the instance asked for.
+        s = socket.socket(socket.AF_INET, socket.SOCK_STREAM)
+        s.setsockopt(socket.SOL_SOCKET, socket.SO_REUSEADDR, 1)
+        s.bind(("127.0.0.1", 5760 + 10 * 9))
+        s.listen(1)
+        try:
+            p = sitl.sitl_process("arducopter", SITL, instance=9)
+            with self.assertRaises(sitl.SitlError) as cm:
+                p.start()
+            self.assertIn("port 5850 already in use", str(cm.exception))
+            self.assertIsNone(p.proc)
+        finally:
+            s.close()
+
+
+if __name__ == "__main__":
+    gr_unittest.run(qa_sitl)

@@ -1,0 +1,80 @@
+#!/usr/bin/python3
+# Copyright 2026 gr-rfseek authors.
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""Seeks flown by the SITL firmware, seed after seed, beside the in-process simulation
+of the same scenario (the module's own world and turn model): one table row per
+vehicle and strategy (docs/results.md "Flown by the real firmware").
+
+Usage (from a build tree: PYTHONPATH=build/python LD_LIBRARY_PATH=build/lib, or with
+the module installed):
+
+    /usr/bin/python3 scripts/sitl_study.py --vehicle arducopter --distance 1000 \\
+        --seeds 1-5 [--strategy adaptive] [--speedup 10] [--wind-from DEG,M_S] [--sitl DIR]
+
+Prints one line per seed (arrived, ratio, flight time, wall time, lowest and highest
+height) and the summary: arrivals, mean ratio, and the paired difference SITL minus
+simulation with its standard error. The ratio is the true distance flown over the
+straight line to the 200 m arrival radius.
+"""
+
+import argparse
+import math
+import statistics
+import sys
+import time
+
+
+def seeds(text):
+    a, _, b = text.partition("-")
+    lo, hi = int(a), int(b or a)
+    if not 0 < lo <= hi:
+        raise argparse.ArgumentTypeError("--seeds %r: must be N or N-M, 0 < N <= M" % text)
+    return list(range(lo, hi + 1))
+
+
+def wind(text):
+    frm, speed = (float(v) for v in text.split(","))
+    return speed, frm
+
+
+def main(argv):
+    p = argparse.ArgumentParser(description=__doc__,
+                                formatter_class=argparse.RawDescriptionHelpFormatter)
+    p.add_argument("--vehicle", required=True, choices=["arducopter", "arduplane", "px4_quad"])
+    p.add_argument("--distance", type=float, default=1000.0)
+    p.add_argument("--seeds", type=seeds, default=seeds("1-5"))
+    p.add_argument("--strategy", default="adaptive")
+    p.add_argument("--speedup", type=float, default=10.0)
+    p.add_argument("--wind-from", type=wind, default=None)
+    p.add_argument("--sitl", default=None)
+    a = p.parse_args(argv)
+    from gnuradio import rfseek
+    from gnuradio.rfseek import sitl_rehearsal
+    rows = []
+    for seed in a.seeds:
+        sim = rfseek.simulation(sitl_rehearsal.scenario_for(a.vehicle, a.distance, seed),
+                                a.strategy).run()
+        t = time.monotonic()
+        s, _ = sitl_rehearsal.rehearse(a.vehicle, a.distance, a.strategy, seed, a.speedup,
+                                       a.wind_from, sitl_dir=a.sitl)
+        rows.append((s, sim))
+        print("seed %3d  %s  ratio %.3f (simulated %.3f)  flight %6.1f s  wall %5.1f s  "
+              "height %.1f-%.1f m" % (seed, "arrived" if s["success"] else "FAILED ",
+                                      s["ratio"], sim.summary.ratio, s["time_s"],
+                                      time.monotonic() - t, s["height_min_m"],
+                                      s["height_max_m"]), flush=True)
+    ok = [(s, sim) for s, sim in rows if s["success"] and sim.summary.success]
+    arrived = sum(s["success"] for s, _ in rows)
+    diffs = [s["ratio"] - sim.summary.ratio for s, sim in ok]
+    mean = statistics.mean(s["ratio"] for s, _ in ok) if ok else float("nan")
+    sim_mean = statistics.mean(sim.summary.ratio for _, sim in ok) if ok else float("nan")
+    se = statistics.stdev(diffs) / math.sqrt(len(diffs)) if len(diffs) > 1 else float("nan")
+    print("%s %s from %.0f m, %d seeds: arrived %d/%d; mean ratio %.3f (simulated %.3f); "
+          "paired difference %+.3f +- %.3f" % (
+              a.vehicle, a.strategy, a.distance, len(rows), arrived, len(rows), mean,
+              sim_mean, statistics.mean(diffs) if diffs else float("nan"), se))
+    return 0 if arrived == len(rows) else 1
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv[1:]))

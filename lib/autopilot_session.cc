@@ -108,6 +108,8 @@ void autopilot_session::handle(const mavlink::frame& f, double t)
         return;
     const mavlink::message m = f.decode();
     const std::string& name = m.def().name;
+    if (name != "HEARTBEAT")
+        d_streams_seen = true;
     if (name == "HEARTBEAT") {
         on_heartbeat(m, t);
     } else if (name == "ATTITUDE") {
@@ -237,7 +239,10 @@ void autopilot_session::update_state(double t)
     const double since_hb = t - d_status.last_heartbeat;
     if (d_status.last_heartbeat < 0)
         set_state("connecting", d_status.reason);
-    else if (since_frame > d_cfg.link_timeout_s)
+    // Until its streams flow (a port without stream rates set sends heartbeats only,
+    // until the interval requests take effect) the link is not called lost for want of
+    // them: only the heartbeat timeout applies.
+    else if (d_streams_seen && since_frame > d_cfg.link_timeout_s)
         set_state("lost",
                   "nothing from the autopilot for more than " +
                       fmt(d_cfg.link_timeout_s) + " s (link_timeout_s)");

@@ -52,8 +52,8 @@ def main(argv):
     from gnuradio.rfseek import sitl_rehearsal
     rows = []
     for seed in a.seeds:
-        sim = rfseek.simulation(sitl_rehearsal.scenario_for(a.vehicle, a.distance, seed),
-                                a.strategy).run()
+        sc = sitl_rehearsal.scenario_for(a.vehicle, a.distance, seed)
+        sim = rfseek.simulation(sc, rfseek.simulation.seeker_for(sc, a.strategy)).run()
         t = time.monotonic()
         s, _ = sitl_rehearsal.rehearse(a.vehicle, a.distance, a.strategy, seed, a.speedup,
                                        a.wind_from, sitl_dir=a.sitl)

@@ -218,6 +218,9 @@ private:
     double d_last_command = -1e300; //!< when the controller last commanded
     double d_heading_backoff = -1e300, d_speed_backoff = -1e300; //!< after a failure
     bool d_streams_requested = false;
+    //! A frame other than a HEARTBEAT has come: the streams flow, and link_timeout_s
+    //! applies (before, at the start, only the heartbeat timeout).
+    bool d_streams_seen = false;
     std::vector<pending> d_pending; //!< COMMAND_LONGs awaiting acks
     std::uint64_t d_sign_time = 0;  //!< last signing timestamp used
     double d_airspeed = -1;

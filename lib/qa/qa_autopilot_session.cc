@@ -663,3 +663,26 @@ TEST(autopilot_session, the_autopilots_clock_from_its_attitude)
     ASSERT_TRUE(s.autopilot_time().has_value());
     EXPECT_DOUBLE_EQ(*s.autopilot_time(), 123.456);
 }
+
+// The link's first seconds: heartbeats alone (the streams not yet flowing) do not make
+// the link lost; once the streams flow, their silence does.
+TEST(autopilot_session, heartbeats_alone_do_not_lose_a_new_link)
+{
+    autopilot_session s(plane_config());
+    fake_autopilot ap;
+    const auto guided =
+        autopilot_mode_number(autopilot_family::ardupilot_plane, "GUIDED");
+    for (double t = 0.0; t < 3.0; t += 0.01) {
+        if (std::fmod(t + 1e-9, 1.0) < 0.01)
+            feed(s, ap.heartbeat(CUSTOM | ARMED, guided), t);
+        s.poll(t);
+        EXPECT_NE(s.status().state, "lost") << "at " << t;
+    }
+    for (double t = 3.0; t < 3.5; t += 0.05) { // the streams begin
+        feed(s, ap.attitude(0.1), t);
+        s.poll(t);
+    }
+    EXPECT_NE(s.status().state, "lost");
+    s.poll(3.45 + 0.5 + 0.1); // link_timeout_s (0.5 s) after the last frame
+    EXPECT_EQ(s.status().state, "lost");
+}

@@ -132,11 +132,8 @@ class qa_follow_truth(gr_unittest.TestCase):
                                math.cos(math.radians(home[0])), delta=1e-6)
         self.assertAlmostEqual(u, 12.5, delta=1e-9)
 
-        class proc:  # what truth_reader needs of a sitl_process
-            spec = {"kind": "px4"}
-        reader = sitl.truth_reader.__new__(sitl.truth_reader)
-        reader.proc = proc()
-        reader.proc.home = home
+        reader = sitl.truth_reader.__new__(sitl.truth_reader)  # no connection
+        reader.kind, reader.home = "px4", home
         reader.client = type("client", (), {"time_boot_ms": 5000})()
         m = rfseek.mavlink.message("HIL_STATE_QUATERNION")
         m.set_int("time_usec", 12345678)

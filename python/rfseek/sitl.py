@@ -413,18 +413,23 @@ def _quat_yaw(w, x, y, z):
 
 class truth_reader:
     """The simulator's true state on its own MAVLink connection, as "truth" dicts for
-    channel_source(follow_truth=True): ArduPilot's SIM_STATE (with the autopilot's clock
-    from the ATTITUDE sent in the same stream), PX4 SIH's HIL_STATE_QUATERNION (its
-    time_usec). Positions are east/north/up from the home (the emitter's ground is the
-    home's height); the heading is true, counter-clockwise from east.
+    channel_source(follow_truth=True): ArduPilot's SIM_STATE (kind "ardupilot"), PX4
+    SIH's HIL_STATE_QUATERNION ("px4"), each with the autopilot's clock from the
+    ATTITUDE sent in the same stream. `link` is the truth's port (sitl_process's
+    truth_link: ArduPilot tcp:127.0.0.1:5762 + 10 x instance, PX4 udpin:127.0.0.1:19410).
+    Positions are east/north/up from `home` (the emitter's ground is the home's height);
+    the heading is true, counter-clockwise from east.
 
     Read by the world and the scoring only: never connect it to the estimator, the
     controller or the link."""
 
-    def __init__(self, proc, rate_hz=50.0):
-        self.proc = proc
-        self.kind = proc.spec["kind"]
-        self.client = mav_client(proc.truth_link, connect_timeout=30.0)
+    def __init__(self, link, kind, home=HOME, rate_hz=50.0, connect_timeout=30.0):
+        if kind not in ("ardupilot", "px4"):
+            raise ValueError("kind = %r: must be 'ardupilot' or 'px4'" % (kind,))
+        self.link = link
+        self.kind = kind
+        self.home = tuple(home)
+        self.client = mav_client(link, connect_timeout=connect_timeout)
         self.rate_hz = float(rate_hz)
         self.started = False
         self.since_s = None
@@ -443,7 +448,7 @@ class truth_reader:
             rate /= 2.0
             if rate < 5.0:
                 raise SitlError("the SITL refuses to stream its truth at 5 Hz or more "
-                                "on %s%s" % (self.proc.truth_link, (
+                                "on %s%s" % (self.link, (
                                     " (it said: %s)" % self.client.text[-1])
                                     if self.client.text else ""))
         self.rate_hz = rate
@@ -462,7 +467,7 @@ class truth_reader:
         if m.name == "SIM_STATE" and self.client.time_boot_ms is not None:
             lat = m.get("lat_int") / 1e7 if m.get("lat_int") else m.get("lat")
             lon = m.get("lon_int") / 1e7 if m.get("lon_int") else m.get("lon")
-            e, n, u = lla_to_local(lat, lon, m.get("alt"), self.proc.home)
+            e, n, u = lla_to_local(lat, lon, m.get("alt"), self.home)
             return {"time": self.client.time_boot_ms / 1e3, "east": e, "north": n, "up": u,
                     "v_east": m.get("ve"), "v_north": m.get("vn"), "v_up": -m.get("vd"),
                     "heading": math.pi / 2 - m.get("yaw")}
@@ -471,7 +476,7 @@ class truth_reader:
             if usec <= 0 and self.client.time_boot_ms is None:
                 return None
             e, n, u = lla_to_local(m.get("lat") / 1e7, m.get("lon") / 1e7,
-                                   m.get("alt") / 1e3, self.proc.home)
+                                   m.get("alt") / 1e3, self.home)
             q = [m.get("attitude_quaternion", i) for i in range(4)]
             return {"time": usec / 1e6 if usec > 0 else self.client.time_boot_ms / 1e3,
                     "east": e, "north": n, "up": u,

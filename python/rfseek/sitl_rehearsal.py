@@ -23,7 +23,7 @@ from gnuradio import gr
 from . import rfseek_python as _core
 from .autopilot_link import autopilot_link
 from .flowgraphs import collector
-from .sitl import SitlError, sitl_process, truth_reader
+from .sitl import HOME, SitlError, sitl_process, truth_reader
 from .sitl_pilot import pilot
 
 
@@ -67,6 +67,24 @@ class truth_source(gr.basic_block):
         if self._thread is not None:
             self._thread.join(timeout=1.0)
         return True
+
+
+class sitl_truth(truth_source):
+    """The truth of a SITL already flying (GRC "RF-Seek SITL Truth"): a truth_source
+    on `link` for a firmware of `kind` ("ardupilot" or "px4") whose home is `home` (lat,
+    lon in deg, altitude in m above sea level). Its streams are asked for when the
+    flowgraph starts; truths from then on are published."""
+
+    def __init__(self, link="tcp:127.0.0.1:5762", kind="ardupilot", home=HOME):
+        try:
+            reader = truth_reader(link, kind, home, connect_timeout=5.0)
+        except SitlError as e:
+            raise ConnectionError("sitl_truth: %s" % e) from None
+        truth_source.__init__(self, reader)
+
+    def start(self):
+        self.reader.start_streams()
+        return truth_source.start(self)
 
 
 class sitl_loop(gr.top_block):
@@ -165,7 +183,7 @@ def rehearse(vehicle, distance_m=800.0, strategy="adaptive", seed=1, speedup=10.
         pl = pilot(proc, sc.altitude_m, log=log)
         pl.take_off()
         # Connected at the hand-over: nothing buffered during the take-off is read.
-        reader = truth_reader(proc)
+        reader = truth_reader(proc.truth_link, proc.spec["kind"], proc.home)
         reader.start_streams(since_s=pl.clock())
         t_seek = time.monotonic()
         link = {"link": proc.link, "family": proc.spec["family"], "time_scale": speedup,
@@ -232,3 +250,28 @@ def trajectory(summary, rec, path):
         summary["ratio"], ", wind %.0f m/s from %.0f deg" % tuple(summary["wind"])
         if summary["wind"] else "")
     trajectory_figure(col, title=title, path=path, arrival=arrival)
+
+
+def take_off_and_hold(vehicle, sitl_dir=None, speedup=10.0, wind=None, altitude_m=None,
+                      log=None):
+    """Start the SITL of an ArduPilot `vehicle`, take off and hand over in its GPS-free
+    mode, then hold it there (the pilot watching) until the SITL stops or Ctrl-C, for a
+    flowgraph of one's own (examples/seek_sitl.grc) to seek with. PX4 is refused: its
+    hand-over needs the link's setpoint stream at once (use rehearse)."""
+    log = log or (lambda text: None)
+    if vehicle not in PROFILES:
+        raise ValueError("vehicle = %r: must be one of %s" % (vehicle, ", ".join(PROFILES)))
+    p = PROFILES[vehicle]
+    if vehicle == "px4_quad":
+        raise ValueError("takeoff-only: ArduPilot vehicles only (PX4 leaves OFFBOARD "
+                         "unless the link streams at once; fly it with rfseek-sitl)")
+    proc = sitl_process(vehicle, sitl_dir, speedup, wind, params=p.get("params"))
+    with proc:
+        pl = pilot(proc, altitude_m if altitude_m is not None else p["altitude_m"], log=log)
+        pl.take_off()
+        log("ready: truth on %s, link on %s, home %.6f, %.6f, %.0f m; Ctrl-C stops it"
+            % (proc.truth_link, proc.link, *proc.home[:3]))
+        while proc.alive():
+            pl.watch()
+            time.sleep(0.1)
+        raise SitlError("the SITL stopped: %s" % proc.log_tail(1))

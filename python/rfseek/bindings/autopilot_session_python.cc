@@ -4,7 +4,7 @@
  */
 
 /* BINDTOOL_HEADER_FILE(autopilot_session.h) */
-/* BINDTOOL_HEADER_FILE_HASH(eb3960bb93670ce8d98be3c1e0838427) */
+/* BINDTOOL_HEADER_FILE_HASH(e48a5df3d573605760d8de2786eeb580) */
 
 #include <gr-rfseek/autopilot_session.h>
 #include <pybind11/pybind11.h>

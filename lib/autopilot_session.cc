@@ -139,6 +139,8 @@ void autopilot_session::handle(const mavlink::frame& f, double t)
 
 void autopilot_session::on_heartbeat(const mavlink::message& m, double t)
 {
+    if (d_first_heartbeat < 0)
+        d_first_heartbeat = t;
     ++d_status.heartbeats;
     d_status.last_heartbeat = t;
     const auto base_mode = static_cast<std::uint8_t>(m.get_uint("base_mode"));
@@ -217,10 +219,15 @@ void autopilot_session::set_state(const std::string& state, const std::string& r
     if (state != "commanding" || !was_commanding)
         d_status.reason = reason;
     if (was_commanding && state != "commanding") {
-        // Stop: no heading or speed is retried, and on resumption both are sent anew.
+        // Stop: no heading or speed is retried, and on resumption both are sent anew;
+        // a coordinated turn starts again from where the vehicle points, the height
+        // hold from a fresh report.
         drop_pending(true);
         d_heading_sent.reset();
         d_speed_sent = false;
+        d_yaw_sp.reset();
+        d_roll_sp = 0;
+        d_alt.reset();
     }
     if (was_linked && !linked()) {
         drop_pending(false);
@@ -242,7 +249,8 @@ void autopilot_session::update_state(double t)
     // Until its streams flow (a port without stream rates set sends heartbeats only,
     // until the interval requests take effect) the link is not called lost for want of
     // them: only the heartbeat timeout applies.
-    else if (d_streams_seen && since_frame > d_cfg.link_timeout_s)
+    else if ((d_streams_seen || t - d_first_heartbeat > d_cfg.heartbeat_timeout_s) &&
+             since_frame > d_cfg.link_timeout_s)
         set_state("lost",
                   "nothing from the autopilot for more than " +
                       fmt(d_cfg.link_timeout_s) + " s (link_timeout_s)");

@@ -219,8 +219,10 @@ private:
     double d_heading_backoff = -1e300, d_speed_backoff = -1e300; //!< after a failure
     bool d_streams_requested = false;
     //! A frame other than a HEARTBEAT has come: the streams flow, and link_timeout_s
-    //! applies (before, at the start, only the heartbeat timeout).
+    //! applies; before, for heartbeat_timeout_s after the first heartbeat, only the
+    //! heartbeat timeout (a port whose stream requests have not taken effect yet).
     bool d_streams_seen = false;
+    double d_first_heartbeat = -1;
     std::vector<pending> d_pending; //!< COMMAND_LONGs awaiting acks
     std::uint64_t d_sign_time = 0;  //!< last signing timestamp used
     double d_airspeed = -1;

@@ -685,4 +685,17 @@ TEST(autopilot_session, heartbeats_alone_do_not_lose_a_new_link)
     EXPECT_NE(s.status().state, "lost");
     s.poll(3.45 + 0.5 + 0.1); // link_timeout_s (0.5 s) after the last frame
     EXPECT_EQ(s.status().state, "lost");
+    // Heartbeats alone for longer than the grace (heartbeat_timeout_s, 3.5 s): lost.
+    autopilot_session quiet(plane_config());
+    bool lost = false;
+    for (double t = 0.0; t < 6.0; t += 0.01) {
+        if (std::fmod(t + 1e-9, 1.0) < 0.01)
+            feed(quiet, ap.heartbeat(CUSTOM | ARMED, guided), t);
+        quiet.poll(t);
+        if (quiet.status().state == "lost") {
+            EXPECT_GT(t, 3.5);
+            lost = true;
+        }
+    }
+    EXPECT_TRUE(lost);
 }

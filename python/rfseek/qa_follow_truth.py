@@ -55,7 +55,7 @@ def wait_until(condition, timeout_s=10.0):
 
 class qa_follow_truth(gr_unittest.TestCase):
 
-    def run_truths(self, sequence, junk=()):
+    def run_truths(self, sequence, junk=(), late=()):
         sc = scenario()
         tb = gr.top_block(catch_exceptions=False)
         src = rfseek.channel_source(sc, mode="burst", lockstep=False, follow_truth=True)
@@ -63,10 +63,9 @@ class qa_follow_truth(gr_unittest.TestCase):
                                        interpolator="newton")
         meas = blocks.message_debug()
         states = blocks.message_debug()
-        tags = blocks.tag_debug(gr.sizeof_gr_complex, "tags", "rfseek_beacon")
-        tags.set_display(False)
+        samples = blocks.vector_sink_c()
         tb.connect(src, est)
-        tb.connect(src, tags)
+        tb.connect(src, samples)
         tb.msg_connect(est, "meas", meas, "store")
         tb.msg_connect(src, "state", states, "store")
         tb.start()
@@ -74,6 +73,8 @@ class qa_follow_truth(gr_unittest.TestCase):
             for j in junk:
                 src.to_basic_block()._post(pmt.intern("truth"), j)
             for t in sequence:
+                src.to_basic_block()._post(pmt.intern("truth"), pmt.to_pmt(t))
+            for t in late:  # before the last one: dropped
                 src.to_basic_block()._post(pmt.intern("truth"), pmt.to_pmt(t))
             span = sequence[-1]["time"] - sequence[0]["time"]
             expected = int(span / sc.slot_period_s + 1e-9) + 1
@@ -84,7 +85,8 @@ class qa_follow_truth(gr_unittest.TestCase):
             tb.wait()
         ms = [pmt.to_python(meas.get_message(i)) for i in range(meas.num_messages())]
         ss = [pmt.to_python(states.get_message(i)) for i in range(states.num_messages())]
-        return sc, src, ms, ss, tags.current_tags(), expected
+        tags = [t for t in samples.tags() if pmt.symbol_to_string(t.key) == "rfseek_beacon"]
+        return sc, src, ms, ss, tags, expected
 
     def test_the_beacon_is_the_doppler_of_the_true_motion(self):
         seq = truths(60)  # 1.18 s of truth at 50 Hz: slots 0..23
@@ -112,16 +114,20 @@ class qa_follow_truth(gr_unittest.TestCase):
             self.assertAlmostEqual(m["time"], k * sc.slot_period_s, delta=1e-9)
             # A noise-free tone: the estimator reads Doppler + carrier offset.
             self.assertAlmostEqual(m["freq_hz"], doppler + 40.0, delta=0.05)
+        # Every beacon's tag, and none carries a heading (the autopilot's comes on nav).
+        self.assertEqual(len(tags), expected)
         self.assertTrue(all("heading" not in pmt.to_python(t.value) for t in tags))
+        self.assertTrue(all("slot" in pmt.to_python(t.value) for t in tags))
 
     def test_bad_truths_are_counted_and_dropped(self):
         seq = truths(30)
         junk = [pmt.intern("junk"), pmt.to_pmt({"time": 1.0}),
                 pmt.to_pmt(dict(seq[0], up=float("nan")))]
-        sc, src, ms, ss, tags, expected = self.run_truths(seq, junk)
-        self.assertEqual(src.truth_dropped_count(), 3)
+        sc, src, ms, ss, tags, expected = self.run_truths(seq, junk, late=[seq[3]])
+        # Three malformed, and one before the last truth.
+        self.assertEqual(src.truth_dropped_count(), 4)
+        self.assertEqual(src.truth_count(), len(seq))
         self.assertEqual(len(ms), expected)
-        # A truth before the last one is dropped too.
         self.assertTrue(all(np.isfinite(m["freq_hz"]) for m in ms))
 
     def test_frames_and_truth_messages(self):

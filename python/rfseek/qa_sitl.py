@@ -43,20 +43,23 @@ def gone(proc, within_s=3.0):
 
 
 def own_sitl_processes():
-    """PIDs of SITL binaries (from the SITL folder) still running on this machine."""
-    out = subprocess.run(["ps", "-eo", "pid,args"], capture_output=True, text=True).stdout
-    return [line for line in out.splitlines()[1:] if SITL and SITL in line]
+    """This test's SITL processes still running: its children (and their process
+    groups' members) running a binary of the SITL folder or a scratch copy."""
+    out = subprocess.run(["ps", "-eo", "pid,ppid,pgid,args"], capture_output=True,
+                         text=True).stdout
+    rows = [line.split(None, 3) for line in out.splitlines()[1:]]
+    mine = {pid for pid, ppid, pgid, args in rows if int(ppid) == os.getpid()}
+    return [args for pid, ppid, pgid, args in rows
+            if (pid in mine or pgid in mine) and ("sitl" in args)]
 
 
 @unittest.skipIf(SITL is None, WHY)
 class qa_sitl(gr_unittest.TestCase):
 
-    def setUp(self):
-        self.before = own_sitl_processes()
-
     def tearDown(self):
-        # No orphan: whatever the test did, no SITL of ours is left running.
-        self.assertEqual(own_sitl_processes(), self.before)
+        # No orphan: whatever the test did, no SITL it started is left running.
+        self.assertEqual(own_sitl_processes(), [])
+        self.assertEqual(len(sitl._LIVE), 0)
 
     def fly(self, vehicle, seed):
         summary, rec = sitl_rehearsal.rehearse(vehicle, 800.0, "adaptive", seed,
@@ -86,7 +89,7 @@ class qa_sitl(gr_unittest.TestCase):
         with self.assertRaises(sitl.SitlError) as cm:
             sitl.sitl_process("arducopter", "/nonexistent/rfseek-sitl")
         self.assertIn("/nonexistent/rfseek-sitl", str(cm.exception))
-        scratch = tempfile.mkdtemp()
+        scratch = tempfile.mkdtemp(prefix="rfseek-fake-sitl-")
         try:
             # A SITL folder whose binary is not executable.
             open(os.path.join(scratch, "arducopter"), "w").close()
@@ -101,6 +104,7 @@ class qa_sitl(gr_unittest.TestCase):
             p = sitl.sitl_process("arducopter", scratch, instance=7)
             with self.assertRaises(sitl.SitlError) as cm:
                 with p:
+                    self.assertNotEqual(own_sitl_processes(), [])  # the check sees it
                     sitl_pilot.pilot(p, wall_timeout_s=2.0)
             self.assertIn("never accepted a connection", str(cm.exception))
             self.assertTrue(gone(p))

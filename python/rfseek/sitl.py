@@ -99,12 +99,23 @@ def _port_free(port, kind):
         s.close()
 
 
-def _die_with_parent():
-    """In the child: the kernel kills it when the program that started it dies, even
-    by SIGKILL (a test runner's timeout), so that no SITL is ever left behind."""
+try:  # loaded here: nothing is imported in a forked child
     import ctypes
-    libc = ctypes.CDLL(None, use_errno=True)
-    libc.prctl(1, signal.SIGKILL)  # PR_SET_PDEATHSIG
+    _LIBC = ctypes.CDLL(None, use_errno=True)
+except OSError:
+    _LIBC = None
+
+
+def _child_of(parent):
+    """preexec_fn: in the child, the kernel kills it when the thread that started it
+    dies, even by SIGKILL (a test runner's timeout), so that no SITL is ever left
+    behind. Start SITLs from the main thread."""
+    def setup():
+        if _LIBC is not None:
+            _LIBC.prctl(1, signal.SIGKILL)  # PR_SET_PDEATHSIG
+        if os.getppid() != parent:  # the parent died before prctl took effect
+            os._exit(1)
+    return setup
 
 
 # Processes started by this interpreter and not yet stopped: stopped at exit.
@@ -146,6 +157,9 @@ class sitl_process:
             if not (0.0 <= speed <= 30.0 and math.isfinite(frm)):
                 raise ValueError("wind = %r: the speed must be in [0, 30] m/s and the "
                                  "direction finite (deg, where it blows from)" % (wind,))
+        if wind is not None and self.spec["kind"] == "px4":
+            raise ValueError("wind: not supported for %s (SITL wind is ArduPilot's "
+                             "SIM_WIND_*)" % vehicle)
         self.wind = wind
         self.home = home
         self.keep = keep
@@ -208,6 +222,15 @@ class sitl_process:
     def start(self):
         self.instance = self._choose_instance()
         self.workdir = tempfile.mkdtemp(prefix="rfseek-sitl-%s-" % self.vehicle)
+        try:
+            self._launch()
+        except BaseException:
+            self.stop()  # the scratch folder too
+            raise
+        _LIVE.add(self)
+        return self
+
+    def _launch(self):
         env = dict(os.environ)
         if self.spec["kind"] == "ardupilot":
             extra = os.path.join(self.workdir, "rfseek.parm")
@@ -256,13 +279,12 @@ class sitl_process:
         try:
             self.proc = subprocess.Popen(cmd, cwd=self.workdir, env=env, stdout=log,
                                          stderr=subprocess.STDOUT, stdin=subprocess.DEVNULL,
-                                         start_new_session=True, preexec_fn=_die_with_parent)
+                                         start_new_session=True,
+                                         preexec_fn=_child_of(os.getpid()))
         except OSError as e:
             raise SitlError("cannot start %s: %s" % (self.binary, e.strerror)) from None
         finally:
             log.close()
-        _LIVE.add(self)
-        return self
 
     def alive(self):
         return self.proc is not None and self.proc.poll() is None
@@ -277,7 +299,6 @@ class sitl_process:
     def stop(self):
         """Stop the firmware and every process of its session; remove the scratch folder
         (unless keep)."""
-        _LIVE.discard(self)
         if self.proc is not None and self.proc.poll() is None:
             for sig, wait in ((signal.SIGTERM, 3.0), (signal.SIGKILL, 3.0)):
                 try:
@@ -294,6 +315,7 @@ class sitl_process:
                 os.killpg(self.proc.pid, signal.SIGKILL)
             except (ProcessLookupError, PermissionError):
                 pass
+        _LIVE.discard(self)
         if self.workdir and not self.keep:
             shutil.rmtree(self.workdir, ignore_errors=True)
             self.workdir = None
@@ -349,19 +371,28 @@ class mav_client:
                 m.set_text(k, v)
             else:
                 m.set(k, v)
-        self.transport.send(_mav.encode(m, _mav.header(self.seq % 256, *self.hdr)))
+        try:
+            self.transport.send(_mav.encode(m, _mav.header(self.seq % 256, *self.hdr)))
+        except OSError as e:
+            raise SitlError("%s: the SITL closed the connection (%s)" % (
+                self.transport.spec, e)) from None
         self.seq += 1
 
     def poll(self, timeout=0.05):
         """Messages from the autopilot within `timeout` s (a list)."""
         out = []
-        ready, _, _ = select.select([self.transport.fileno()], [], [], timeout)
-        while ready:  # everything waiting (UDP: one datagram a read), so as not to lag
-            data, addr = self.transport.recv()
-            if not data:
-                break
-            self._take(data, addr, out)
-            ready, _, _ = select.select([self.transport.fileno()], [], [], 0)
+        try:
+            ready, _, _ = select.select([self.transport.fileno()], [], [], timeout)
+            while ready:  # everything waiting (UDP: one datagram a read), not to lag
+                data, addr = self.transport.recv()
+                if not data:
+                    break
+                self._take(data, addr, out)
+                ready, _, _ = select.select([self.transport.fileno()], [], [], 0)
+        except (OSError, ValueError) as e:
+            raise SitlError("%s: the SITL closed the connection (%s)%s" % (
+                self.transport.spec, e, (" (it said: %s)" % self.text[-1])
+                if self.text else "")) from None
         return out
 
     def _take(self, data, addr, out):

@@ -173,10 +173,10 @@ class pilot:
             self.height() or 0.0, self.proc.spec["mode"], self._clock()))
 
     def _hover(self):
-        while self._hovering:
+        while self._hovering and self.proc.alive():
             try:
                 self._attitude_target(self.hover_thrust)
-            except OSError:
+            except (OSError, SitlError):
                 return
             time.sleep(0.05 / self.proc.speedup)
 

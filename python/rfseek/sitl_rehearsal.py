@@ -162,6 +162,20 @@ def scenario_for(vehicle, distance_m=800.0, seed=1, altitude_m=None, sets=()):
     return sc
 
 
+def _link_settings(proc, p, speedup, tlog):
+    """autopilot_link's settings for a vehicle of profile p behind the SITL proc."""
+    link = {"link": proc.link, "family": proc.spec["family"], "time_scale": speedup,
+            "link_timeout_s": 2.0, "tlog": tlog or "", "clock": "autopilot"}
+    for k in ("pitch_deg", "thrust", "heading_accel_mps2"):
+        if k in p:
+            link[k] = p[k]
+    if "thrust" in p:  # multirotors: coordinated turns, as the seeker's turn model
+        link.update(turn_bank_deg=p["bank_deg"], turn_speed_mps=p["speed_mps"])
+    if proc.spec["kind"] == "px4":  # raw thrust: the link holds the height
+        link["hold_altitude"] = True
+    return link
+
+
 def rehearse(vehicle, distance_m=800.0, strategy="adaptive", seed=1, speedup=10.0,
              wind=None, altitude_m=None, sitl_dir=None, tlog=None, self_arrival=False,
              sets=(), progress_every=0, log=None, wall_cap_s=600.0):
@@ -181,23 +195,19 @@ def rehearse(vehicle, distance_m=800.0, strategy="adaptive", seed=1, speedup=10.
     with proc:
         log("started %s (instance %d) in %s" % (proc.binary, proc.instance, proc.workdir))
         pl = pilot(proc, sc.altitude_m, log=log)
-        pl.take_off()
-        # Connected at the hand-over: nothing buffered during the take-off is read.
-        reader = truth_reader(proc.truth_link, proc.spec["kind"], proc.home)
-        reader.start_streams(since_s=pl.clock())
-        t_seek = time.monotonic()
-        link = {"link": proc.link, "family": proc.spec["family"], "time_scale": speedup,
-                "link_timeout_s": 2.0, "tlog": tlog or "", "clock": "autopilot"}
-        for k in ("pitch_deg", "thrust", "heading_accel_mps2"):
-            if k in p:
-                link[k] = p[k]
-        if "thrust" in p:  # multirotors: coordinated turns, as the seeker's turn model
-            link.update(turn_bank_deg=p["bank_deg"], turn_speed_mps=p["speed_mps"])
-        if proc.spec["kind"] == "px4":  # raw thrust: the link holds the height
-            link["hold_altitude"] = True
-        loop = sitl_loop(sc, cfg, reader, link, progress_every)
-        loop.start()
+        reader = loop = None
         try:
+            pl.take_off()
+            # Connected at the hand-over: nothing buffered during the take-off is read.
+            reader = truth_reader(proc.truth_link, proc.spec["kind"], proc.home)
+            reader.start_streams(since_s=pl.clock())
+            t_seek = time.monotonic()
+            try:
+                loop = sitl_loop(sc, cfg, reader, _link_settings(proc, p, speedup, tlog),
+                                 progress_every)
+            except OSError as e:
+                raise SitlError("the link to %s: %s" % (proc.link, e)) from None
+            loop.start()
             if proc.spec["kind"] == "px4":
                 pl.keep_px4_hovering(lambda: loop.link.status()["state"] == "commanding")
             while not loop.finished():
@@ -209,11 +219,13 @@ def rehearse(vehicle, distance_m=800.0, strategy="adaptive", seed=1, speedup=10.
                     raise SitlError("the seek took over %.0f s of wall time" % wall_cap_s)
                 pl.watch()
                 time.sleep(0.05)
-        finally:
-            loop.stop()
-            loop.wait()
-            loop.link.close()
-            reader.close()
+        finally:  # whatever happened: the flowgraph, the sockets, the pilot's thread
+            if loop is not None:
+                loop.stop()
+                loop.wait()
+                loop.link.close()
+            if reader is not None:
+                reader.close()
             pl.close()
     states = loop.collector.states
     last = states[-1]

@@ -4,7 +4,7 @@
  */
 
 /* BINDTOOL_HEADER_FILE(autopilot_session.h) */
-/* BINDTOOL_HEADER_FILE_HASH(e48a5df3d573605760d8de2786eeb580) */
+/* BINDTOOL_HEADER_FILE_HASH(3e104e0a1cc7c6bf5bcc23c906a04162) */
 
 #include <gr-rfseek/autopilot_session.h>
 #include <pybind11/pybind11.h>

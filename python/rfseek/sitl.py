@@ -232,6 +232,10 @@ class sitl_process:
 
     def _launch(self):
         env = dict(os.environ)
+        # The firmware is not ours to sanitize: no ASan runtime preloaded into it (the
+        # test suite's sanitizer job preloads one into Python).
+        for k in ("LD_PRELOAD", "ASAN_OPTIONS", "UBSAN_OPTIONS"):
+            env.pop(k, None)
         if self.spec["kind"] == "ardupilot":
             extra = os.path.join(self.workdir, "rfseek.parm")
             # The truth and the link on SERIAL1 and SERIAL2 at 921600 baud: ArduPilot

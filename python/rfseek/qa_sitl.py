@@ -13,7 +13,6 @@ import os
 import shutil
 import socket
 import stat
-import subprocess
 import sys
 import tempfile
 import time
@@ -49,12 +48,22 @@ def gone(proc, within_s=3.0):
 def own_sitl_processes():
     """This test's SITL processes still running: its children (and their process
     groups' members) running a binary of the SITL folder or a scratch copy."""
-    out = subprocess.run(["ps", "-eo", "pid,ppid,pgid,args"], capture_output=True,
-                         text=True).stdout
-    rows = [line.split(None, 3) for line in out.splitlines()[1:]]
+    rows = []
+    for pid in filter(str.isdigit, os.listdir("/proc")):  # not ps: read /proc itself
+        try:
+            with open("/proc/%s/stat" % pid) as f:
+                stat = f.read()
+            with open("/proc/%s/cmdline" % pid, "rb") as f:
+                args = f.read().replace(b"\0", b" ").decode(errors="replace")
+        except OSError:
+            continue  # gone meanwhile
+        fields = stat[stat.rindex(")") + 2:].split()  # after "pid (comm) "
+        if fields[0] == "Z":
+            continue  # exited, not yet reaped
+        rows.append((pid, fields[1], fields[2], args))
     mine = {pid for pid, ppid, pgid, args in rows if int(ppid) == os.getpid()}
     return [args for pid, ppid, pgid, args in rows
-            if (pid in mine or pgid in mine) and ("sitl" in args)]
+            if (pid in mine or pgid in mine) and "sitl" in args]
 
 
 @unittest.skipIf(SITL is None, WHY)

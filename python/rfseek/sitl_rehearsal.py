@@ -188,6 +188,11 @@ def rehearse(vehicle, distance_m=800.0, strategy="adaptive", seed=1, speedup=10.
     sc = scenario_for(vehicle, distance_m, seed, altitude_m, sets)
     sc.self_arrival = bool(self_arrival)
     cfg = _core.simulation.seeker_for(sc, strategy)
+    if sc.self_arrival and sc.bank_limit_rad > 0:
+        # The loiter over the emitter must be an orbit the vehicle can fly: 20 % wider
+        # than its tightest turn at the profile's bank (a plane's is about 93 m).
+        tightest = sc.speed_mps ** 2 / (9.80665 * math.tan(sc.bank_limit_rad))
+        cfg.loiter_radius_m = max(cfg.loiter_radius_m, 1.2 * tightest)
     cfg.validate()
     speedup = min(speedup, p.get("max_speedup", speedup))
     t_wall = time.monotonic()
@@ -244,6 +249,10 @@ def rehearse(vehicle, distance_m=800.0, strategy="adaptive", seed=1, speedup=10.
         "height_max_m": max(t["up"] for t in loop.truth.truths),
         "link": loop.link.status(),
     }
+    if sc.self_arrival:  # declared where, and the fix against the true emitter
+        from .flowgraphs import arrival_summary
+        summary["arrival"] = arrival_summary(states, loop.collector.status,
+                                             loop.collector.telemetry)
     return summary, {"truths": loop.truth.truths, "states": states,
                      "status": loop.collector.status, "telemetry": loop.collector.telemetry,
                      "meas": loop.collector.meas}

@@ -64,6 +64,9 @@ channel_source_impl::channel_source_impl(const scenario& sc,
       d_realtime(realtime),
       d_port_cmd(pmt::mp("cmd")),
       d_port_truth(pmt::mp("truth")),
+      d_truth_keys{ pmt::mp("time"), pmt::mp("east"),   pmt::mp("north"),
+                    pmt::mp("up"),   pmt::mp("v_east"), pmt::mp("v_north"),
+                    pmt::mp("v_up"), pmt::mp("heading") },
       d_port_state(pmt::mp("state")),
       d_key_beacon(pmt::mp("rfseek_beacon")),
       d_key_slot(pmt::mp("slot")),
@@ -201,16 +204,14 @@ void channel_source_impl::handle_truth(const pmt::pmt_t& msg)
         return;
     }
     vehicle_truth t;
-    const std::pair<const char*, double*> fields[] = {
-        { "time", &t.time_s },       { "east", &t.east_m },
-        { "north", &t.north_m },     { "up", &t.up_m },
-        { "v_east", &t.v_east_mps }, { "v_north", &t.v_north_mps },
-        { "v_up", &t.v_up_mps },     { "heading", &t.heading_rad }
-    };
-    for (const auto& [key, field] : fields) {
+    double* const fields[TRUTH_FIELDS] = { &t.time_s,   &t.east_m,     &t.north_m,
+                                           &t.up_m,     &t.v_east_mps, &t.v_north_mps,
+                                           &t.v_up_mps, &t.heading_rad };
+    for (std::size_t i = 0; i < TRUTH_FIELDS; ++i) {
+        double* const field = fields[i];
         pmt::pmt_t v;
         try {
-            v = pmt::dict_ref(msg, pmt::mp(key), pmt::PMT_NIL);
+            v = pmt::dict_ref(msg, d_truth_keys[i], pmt::PMT_NIL);
         } catch (const std::exception&) {
             reject("not a dict");
             return;
@@ -220,11 +221,11 @@ void channel_source_impl::handle_truth(const pmt::pmt_t& msg)
         else if (pmt::is_uint64(v))
             *field = static_cast<double>(pmt::to_uint64(v));
         else {
-            reject(std::string("no numeric '") + key + "'");
+            reject("no numeric '" + pmt::symbol_to_string(d_truth_keys[i]) + "'");
             return;
         }
         if (!std::isfinite(*field)) {
-            reject(std::string("non-finite '") + key + "'");
+            reject("non-finite '" + pmt::symbol_to_string(d_truth_keys[i]) + "'");
             return;
         }
     }

@@ -9,6 +9,7 @@
 
 #include <gr-rfseek/channel_source.h>
 #include <gr-rfseek/world.h>
+#include <array>
 #include <chrono>
 #include <deque>
 #include <set>
@@ -99,6 +100,9 @@ private:
 
     const pmt::pmt_t d_port_cmd;
     const pmt::pmt_t d_port_truth;
+    // The truth's keys, in the order of vehicle_truth's fields.
+    static constexpr std::size_t TRUTH_FIELDS = 8;
+    const std::array<pmt::pmt_t, TRUTH_FIELDS> d_truth_keys;
     const pmt::pmt_t d_port_state;
     const pmt::pmt_t d_key_beacon;
     const pmt::pmt_t d_key_slot;

@@ -4,7 +4,7 @@
 #
 """Rehearsals against the real flight firmware: ArduPilot's (ArduCopter, ArduPlane) or
 PX4's (SIH quad) software-in-the-loop build flies the vehicle, with the GPS off, and the
-simulated world follows its true state (docs/live.md "Rehearsing against SITL").
+simulated world follows its true state (docs/sitl.md).
 
     find_sitl(path)      where the SITL builds are: the option, $RFSEEK_SITL, or the
                          source tree's ../shared/sitl
@@ -148,9 +148,6 @@ class sitl_process:
         self.dir = find_sitl(sitl_dir)
         if not (isinstance(speedup, (int, float)) and 1.0 <= speedup <= 100.0):
             raise ValueError("speedup = %r: must be in [1, 100]" % (speedup,))
-        if self.spec["kind"] == "px4" and speedup != 1.0:
-            # PX4 SIH runs in lockstep with the host clock; PX4_SIM_SPEED_FACTOR scales it.
-            pass
         self.speedup = float(speedup)
         if wind is not None:
             speed, frm = wind
@@ -466,7 +463,6 @@ class truth_reader:
         self.home = tuple(home)
         self.client = mav_client(link, connect_timeout=connect_timeout)
         self.rate_hz = float(rate_hz)
-        self.started = False
         self.since_s = None
 
     def start_streams(self, since_s=None):
@@ -487,7 +483,6 @@ class truth_reader:
                                     " (it said: %s)" % self.client.text[-1])
                                     if self.client.text else ""))
         self.rate_hz = rate
-        self.started = True
 
     def read(self, timeout=0.02):
         """The truths that arrived within `timeout` s (a list of dicts, in time order)."""

@@ -3,7 +3,7 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
 #
 """The rehearsal's pilot: what a ground station and its pilot do before a seek against
-SITL (docs/live.md "Rehearsing against SITL"): the take-off without GPS and the
+SITL (docs/sitl.md): the take-off without GPS and the
 hand-over to the link in the GPS-free mode."""
 
 import math

@@ -4,7 +4,7 @@
 #
 """The seek flown by the real firmware: SITL (sitl.sitl_process) flies the vehicle, the
 world follows its truth, and the receive chain, the controller and autopilot_link are
-the very blocks of a flight (docs/live.md "Rehearsing against SITL").
+the very blocks of a flight (docs/sitl.md).
 
     SITL ──true state──▶ truth_source ──truth──▶ channel_source(follow_truth) ──▶
         doppler_estimator ──meas──▶ seeking_controller ──cmd──▶ autopilot_link ──▶ SITL

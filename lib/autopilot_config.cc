@@ -136,6 +136,10 @@ void autopilot_config::validate() const
         throw std::invalid_argument(
             "autopilot_link: turn_speed_mps = " + fmt(turn_speed_mps) +
             ": must be in (0, 50] m/s when turn_bank_deg > 0 (the speed at pitch_deg)");
+    if (!(declination_deg >= -180 && declination_deg <= 180))
+        throw std::invalid_argument(
+            "autopilot_link: declination_deg = " + fmt(declination_deg) +
+            ": must be in [-180, 180] (deg east of true north)");
     if (target_system == 0 || own_system == 0 || own_component == 0)
         throw std::invalid_argument("autopilot_link: system and component ids must be in "
                                     "[1, 255] (0 is the broadcast address)");

@@ -116,8 +116,10 @@ void autopilot_session::handle(const mavlink::frame& f, double t)
         // Yaw: radians clockwise from north (NED). Module: counter-clockwise from east.
         const double yaw = m.get("yaw");
         if (std::isfinite(yaw)) {
-            d_nav.push_back({ wrap_remainder(M_PI / 2 - yaw), t, d_airspeed });
-            d_attitude_yaw = d_nav.back().heading_rad;
+            // In the autopilot's frame (magnetic without GPS); nav from true north.
+            d_attitude_yaw = wrap_remainder(M_PI / 2 - yaw);
+            d_nav.push_back(
+                { wrap_remainder(*d_attitude_yaw - declination()), t, d_airspeed });
             d_autopilot_time = m.get("time_boot_ms") / 1e3;
         }
     } else if (name == "VFR_HUD") {
@@ -307,7 +309,7 @@ void autopilot_session::command(double heading_rad, double t)
 {
     if (!std::isfinite(heading_rad))
         return;
-    d_heading = wrap_remainder(heading_rad);
+    d_heading = wrap_remainder(heading_rad + declination()); // to the autopilot's frame
     d_last_command = t;
     update_state(t);
 }

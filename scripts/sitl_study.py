@@ -10,9 +10,11 @@ the module installed):
 
     /usr/bin/python3 scripts/sitl_study.py --vehicle arducopter --distance 1000 \\
         --seeds 1-5 [--strategy adaptive] [--speedup 10] [--wind-from DEG,M_S] [--sitl DIR]
+        [--arrival self] [--declination DEG]
 
 Prints one line per seed (arrived, ratio, flight time, wall time, lowest and highest
-height) and the summary: arrivals, mean ratio, and the paired difference SITL minus
+height; with --arrival self where it declared and the fix's error against the true
+emitter) and the summary: arrivals, mean ratio, and the paired difference SITL minus
 simulation with its standard error. The ratio is the true distance flown over the
 straight line to the 200 m arrival radius.
 """
@@ -47,6 +49,9 @@ def main(argv):
     p.add_argument("--speedup", type=float, default=10.0)
     p.add_argument("--wind-from", type=wind, default=None)
     p.add_argument("--sitl", default=None)
+    p.add_argument("--arrival", default="oracle", choices=("oracle", "self"))
+    p.add_argument("--declination", type=float, default=None,
+                   help="told to the link (default: the home's)")
     a = p.parse_args(argv)
     from gnuradio import rfseek
     from gnuradio.rfseek import sitl_rehearsal
@@ -55,14 +60,22 @@ def main(argv):
         sc = sitl_rehearsal.scenario_for(a.vehicle, a.distance, seed)
         sim = rfseek.simulation(sc, rfseek.simulation.seeker_for(sc, a.strategy)).run()
         t = time.monotonic()
+        kw = {} if a.declination is None else {"declination_deg": a.declination}
         s, _ = sitl_rehearsal.rehearse(a.vehicle, a.distance, a.strategy, seed, a.speedup,
-                                       a.wind_from, sitl_dir=a.sitl)
+                                       a.wind_from, sitl_dir=a.sitl,
+                                       self_arrival=a.arrival == "self", **kw)
         rows.append((s, sim))
+        arr = s.get("arrival", {})
         print("seed %3d  %s  ratio %.3f (simulated %.3f)  flight %6.1f s  wall %5.1f s  "
-              "height %.1f-%.1f m" % (seed, "arrived" if s["success"] else "FAILED ",
-                                      s["ratio"], sim.summary.ratio, s["time_s"],
-                                      time.monotonic() - t, s["height_min_m"],
-                                      s["height_max_m"]), flush=True)
+              "height %.1f-%.1f m  compass %.1f deg east%s" % (
+                  seed, "arrived" if s["success"] else "FAILED ", s["ratio"],
+                  sim.summary.ratio, s["time_s"], time.monotonic() - t,
+                  s["height_min_m"], s["height_max_m"], s["compass_declination_deg"] or 0.0,
+                  ("  declared %s at %.0f m, fix error %s" % (
+                      arr["declared"], arr.get("arrival_detect_distance_m", float("nan")),
+                      "%.1f m (in ellipse: %s)" % (arr["location_error_m"],
+                                                   arr["location_in_ellipse"])
+                      if arr.get("located") else "none")) if arr else ""), flush=True)
     ok = [(s, sim) for s, sim in rows if s["success"] and sim.summary.success]
     arrived = sum(s["success"] for s, _ in rows)
     diffs = [s["ratio"] - sim.summary.ratio for s, sim in ok]

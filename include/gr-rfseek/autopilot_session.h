@@ -18,6 +18,7 @@
 #include <gr-rfseek/api.h>
 #include <gr-rfseek/mavlink.h>
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -96,6 +97,15 @@ struct RFSEEK_API autopilot_config {
      * 0.002 per m s of its integral - 0.05 per m/s of climb, within [0.1, 0.9].
      */
     bool hold_altitude = false;
+    /*!
+     * The magnetic declination at the site (deg east of true north, [-180, 180]). An
+     * autopilot without GPS never learns it (ArduPilot's COMPASS_DEC stays 0), so the
+     * headings it flies and reports are magnetic. The session adds it to every reported
+     * heading (nav is then from true north) and takes it from every commanded one, so
+     * that the seeker, its wind forecast and its location fix are all from true north.
+     * 0: the seeker works in the autopilot's frame, whatever it is.
+     */
+    double declination_deg = 0;
     //! Message signing: sign what we send and require signed frames from the link.
     std::optional<std::array<std::uint8_t, 32>> signing_key;
     std::uint8_t signing_link_id = 0;
@@ -173,6 +183,8 @@ private:
         int sends;
     };
     static std::uint16_t command_of(const pending& p);
+    //! The declination in radians (true = magnetic - declination, counter-clockwise).
+    double declination() const { return d_cfg.declination_deg * M_PI / 180.0; }
     bool linked() const;
     bool streaming() const;
     void drop_pending(bool keep_link_requests);
@@ -204,8 +216,8 @@ private:
     std::uint8_t d_seq = 0;
     double d_last_frame = -1, d_last_sent_heartbeat = -1e300, d_last_setpoint = -1e300;
     double d_last_heading_sent_at = -1e300;
-    std::optional<double> d_heading;        //!< the controller's last command
-    std::optional<double> d_yaw_sp;         //!< coordinated turn: the yaw set now
+    std::optional<double> d_heading; //!< the controller's last command, autopilot frame
+    std::optional<double> d_yaw_sp;  //!< coordinated turn: the yaw set now
     std::optional<double> d_attitude_yaw;   //!< the autopilot's last reported heading
     std::optional<double> d_autopilot_time; //!< its last ATTITUDE time_boot_ms (s)
     double d_roll_sp = 0, d_last_turn = -1; //!< coordinated turn: roll (rad), when

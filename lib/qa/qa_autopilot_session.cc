@@ -348,6 +348,57 @@ TEST(autopilot_session, heading_reports)
     EXPECT_EQ(nav[0].time, 1.0);
 }
 
+// Without GPS the autopilot's compass is magnetic: with the site's declination D (east
+// of true), a reported magnetic bearing B is the true bearing B + D, and a true command
+// C goes out as the magnetic C - D, by every family's command path.
+TEST(autopilot_session, the_declination_turns_headings_to_true_north)
+{
+    const double dec = 12.8, rad = M_PI / 180;
+    for (auto family : { autopilot_family::ardupilot_plane,
+                         autopilot_family::ardupilot_copter,
+                         autopilot_family::px4 }) {
+        autopilot_config c;
+        c.family = family;
+        c.declination_deg = dec;
+        autopilot_session s(c);
+        fake_autopilot ap;
+        feed(s, ap.attitude(0.0), 0.0);         // magnetic north
+        feed(s, ap.attitude(-100 * rad), 0.01); // magnetic 260
+        const auto nav = s.take_nav();
+        ASSERT_EQ(nav.size(), 2u);
+        // True bearing 12.8 deg: counter-clockwise from east, 90 - 12.8.
+        EXPECT_NEAR(nav[0].heading_rad, (90 - dec) * rad, 1e-6); // ATTITUDE is float32
+        EXPECT_NEAR(std::remainder(nav[1].heading_rad - (90 - 260 - dec) * rad, 2 * M_PI),
+                    0,
+                    1e-6);
+        feed(s,
+             ap.heartbeat(CUSTOM | ARMED,
+                          autopilot_mode_number(family, autopilot_default_mode(family))),
+             0.02);
+        s.command((90 - 200) * rad, 0.02); // true bearing 200: magnetic 187.2
+        double sent = NAN;
+        for (double t = 0.02; t < 0.5 && std::isnan(sent); t += 0.01) {
+            const auto msgs = decode_all(s.poll(t));
+            for (const auto& m : commands(msgs))
+                if (m.get_uint("command") == 43002) // MAV_CMD_GUIDED_CHANGE_HEADING
+                    sent = m.get("param2");
+            for (const auto& m : of(msgs, "SET_ATTITUDE_TARGET")) {
+                const double w = m.get("q", 0), x = m.get("q", 1), y = m.get("q", 2),
+                             z = m.get("q", 3);
+                const double yaw =
+                    std::atan2(2 * (w * z + x * y), 1 - 2 * (y * y + z * z));
+                sent = std::fmod(yaw / rad + 360, 360);
+            }
+        }
+        EXPECT_NEAR(sent, 200 - dec, 1e-3) << to_string(family);
+    }
+    autopilot_config bad;
+    for (double d : { -181.0, 181.0, double(NAN) }) {
+        bad.declination_deg = d;
+        EXPECT_THROW(bad.validate(), std::invalid_argument);
+    }
+}
+
 TEST(autopilot_session, attitude_setpoints_for_copters)
 {
     for (auto family : { autopilot_family::ardupilot_copter, autopilot_family::px4 }) {
@@ -597,8 +648,9 @@ TEST(autopilot_session, coordinated_turns_for_multirotors)
                     levelled = true;
                 }
             }
-            if (levelled && heading >= target - 1e-6 && std::abs(roll) < 1e-9)
+            if (levelled && heading >= target - 1e-6 && std::abs(roll) < 1e-9) {
                 EXPECT_NEAR(heading, target, 1e-6);
+            }
             last_heading = heading;
             last_t = t;
         }

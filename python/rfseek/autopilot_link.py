@@ -204,14 +204,17 @@ class autopilot_link(gr.basic_block):
     link}. States: connecting, holding (linked but not commanding: not armed, another
     mode, no command yet), commanding, lost. time_scale > 1 runs the link's clock (rates,
     timeouts) that many times faster, for a rehearsal paced faster than real time
-    against sim_autopilot with the same time_scale."""
+    against sim_autopilot with the same time_scale. declination_deg: the site's magnetic
+    declination (deg east of true north): nav headings are turned from the autopilot's
+    (magnetic, without GPS) to true north and commands back (0: the autopilot's frame)."""
 
     def __init__(self, link="udpin:127.0.0.1:14550", family="ardupilot_plane", mode="",
                  target_system=1, target_component=1, own_system=1, own_component=191,
                  airspeed_mps=0.0, link_timeout_s=0.5, ack_timeout_s=0.3, retries=3,
                  signing_key="", tlog="", time_scale=1.0, heading_accel_mps2=6.0,
                  pitch_deg=5.0, thrust=0.5, command_timeout_s=2.0, turn_bank_deg=0.0,
-                 turn_speed_mps=0.0, hold_altitude=False, clock="host"):
+                 turn_speed_mps=0.0, hold_altitude=False, clock="host",
+                 declination_deg=0.0):
         gr.basic_block.__init__(self, name="autopilot_link", in_sig=None, out_sig=None)
         cfg = _core.autopilot_config()
         try:
@@ -239,6 +242,7 @@ class autopilot_link(gr.basic_block):
         cfg.turn_bank_deg = float(turn_bank_deg)
         cfg.turn_speed_mps = float(turn_speed_mps)
         cfg.hold_altitude = bool(hold_altitude)
+        cfg.declination_deg = float(declination_deg)
         cfg.command_timeout_s = float(command_timeout_s)
         if signing_key:
             try:

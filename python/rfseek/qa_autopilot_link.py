@@ -41,11 +41,13 @@ class pair:
     """A link (udpin, ephemeral port) and a simulated autopilot sending to it, running,
     with the link's nav and status and the autopilot's cmd stored."""
 
-    def __init__(self, family="ardupilot_plane", armed=True, tlog="", **kw):
+    def __init__(self, family="ardupilot_plane", armed=True, tlog="", compass_dec=0.0,
+                 **kw):
         kw.setdefault("command_timeout_s", 60.0)  # the tests command once, not every slot
         self.link = rfseek.autopilot_link("udpin:127.0.0.1:0", family=family, tlog=tlog, **kw)
         self.sim = rfseek.sim_autopilot("udpout:127.0.0.1:%d" % self.link.local_address()[1],
-                                        family=family, armed=armed)
+                                        family=family, armed=armed,
+                                        declination_deg=compass_dec)
         self.nav, self.status, self.cmd = (blocks.message_debug() for _ in range(3))
         self.tb = gr.top_block()
         self.tb.msg_connect(self.link, "nav", self.nav, "store")
@@ -110,6 +112,31 @@ class qa_autopilot_link(gr_unittest.TestCase):
             self.assertEqual(p.statuses()[-1]["state"], "commanding")
         finally:
             p.close()
+
+    def test_a_magnetic_compass_and_the_declination(self):
+        # An autopilot without GPS whose compass is magnetic (declination 12.8 deg east):
+        # a link told the declination reports and commands true headings, and what
+        # crosses the link is magnetic; a link not told stays in the magnetic frame.
+        dec = 12.8
+        for told in (dec, 0.0):
+            p = pair(airspeed_mps=12.0, compass_dec=dec, declination_deg=told)
+            try:
+                p.state(0.3)  # the true heading, counter-clockwise from east
+                self.assertTrue(wait_until(lambda: p.nav.num_messages() >= 1))
+                self.assertTrue(wait_until(lambda: abs(pmt.to_python(
+                    p.nav.get_message(p.nav.num_messages() - 1))["heading"]
+                    - (0.3 + math.radians(dec - told))) < 1e-5))
+                p.command(-2.0)  # true compass 204.6 deg
+                self.assertTrue(wait_until(lambda: len(p.sim_commands()) >= 1))
+                # The world flies the command turned by what the link was not told.
+                self.assertAlmostEqual(p.sim_commands()[-1], -2.0 + math.radians(told - dec),
+                                       places=5)
+                sent = [r[2] for r in p.sim.received
+                        if r[1] == "COMMAND_INT" and r[2]["command"] == 43002]
+                compass = (90.0 - math.degrees(-2.0)) % 360.0
+                self.assertAlmostEqual(sent[-1]["param2"], compass - told, places=3)
+            finally:
+                p.close()
 
     def test_disarmed_or_out_of_mode_holds_commands(self):
         p = pair(armed=False)
@@ -339,6 +366,8 @@ const out = [];
                          ({"signing_key": "abcd"}, "signing_key"),
                          ({"heading_accel_mps2": 0}, "heading_accel_mps2"),
                          ({"thrust": 1.5}, "thrust"),
+                         ({"declination_deg": 190.0}, "declination_deg"),
+                         ({"declination_deg": float("nan")}, "declination_deg"),
                          ({"signing_key": "ab" * 32, "time_scale": 10}, "time_scale")):
             with self.assertRaises(ValueError) as cm:
                 rfseek.autopilot_link(**kw)
@@ -348,7 +377,8 @@ const out = [];
                          ({"airspeed_mps": float("nan")}, "airspeed_mps"),
                          ({"ref_lat_deg": 100.0}, "ref_lat_deg"),
                          ({"ref_lon_deg": 200.0}, "ref_lon_deg"),
-                         ({"time_scale": 0.5}, "time_scale")):
+                         ({"time_scale": 0.5}, "time_scale"),
+                         ({"declination_deg": -200.0}, "declination_deg")):
             with self.assertRaises(ValueError) as cm:
                 rfseek.sim_autopilot(**kw)
             self.assertIn(word, str(cm.exception))
@@ -404,7 +434,9 @@ const out = [];
         live = os.path.join(os.environ.get("RFSEEK_SOURCE_DIR", "."), "apps", "rfseek-live")
         r = subprocess.run([sys.executable, live, "--source", "sim", "--vehicle", "mavlink",
                             "--set", "initial_distance_m=800", "--speedup", "8",
-                            "--seed", "3", "--duration", "240"],
+                            "--seed", "3", "--duration", "240",
+                            # its compass magnetic, the link told the declination
+                            "--declination", "15"],
                            capture_output=True, text=True, timeout=400)
         self.assertEqual(r.returncode, 0, r.stderr[-2000:])
         self.assertIn("rfseek-live: arrived", r.stderr)

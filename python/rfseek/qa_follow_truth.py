@@ -139,7 +139,10 @@ class qa_follow_truth(gr_unittest.TestCase):
 
         reader = sitl.truth_reader.__new__(sitl.truth_reader)  # no connection
         reader.kind, reader.home = "px4", home
-        reader.client = type("client", (), {"time_boot_ms": 5000})()
+        att = rfseek.mavlink.message("ATTITUDE")  # the autopilot's own: compass 42 deg
+        att.set("yaw", math.radians(42.0))
+        reader.client = type("client", (), {"time_boot_ms": 5000,
+                                            "last": {"ATTITUDE": att}})()
         m = rfseek.mavlink.message("HIL_STATE_QUATERNION")
         m.set_int("time_usec", 12345678)
         yaw = math.radians(30.0)  # 30 deg clockwise from north: 60 deg CCW from east
@@ -154,6 +157,7 @@ class qa_follow_truth(gr_unittest.TestCase):
         t = reader.convert(m)
         self.assertAlmostEqual(t["time"], 12.345678)
         self.assertAlmostEqual(t["heading"], math.radians(60.0), delta=1e-6)
+        self.assertAlmostEqual(t["reported_heading"], math.radians(48.0), delta=1e-6)
         self.assertAlmostEqual(t["v_north"], 3.0)
         self.assertAlmostEqual(t["v_east"], -4.0)
         self.assertAlmostEqual(t["v_up"], 0.5)

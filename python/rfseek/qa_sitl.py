@@ -80,12 +80,18 @@ class qa_sitl(gr_unittest.TestCase):
                                                wall_cap_s=400.0)
         sys.stderr.write("%s seed %d: %s\n" % (vehicle, seed, {
             k: summary[k] for k in ("success", "ratio", "time_s", "wall_s",
-                                    "height_min_m", "height_max_m")}))
+                                    "height_min_m", "height_max_m",
+                                    "compass_declination_deg")}))
         self.assertTrue(summary["success"], summary)
         # The world followed the firmware: its track is the truth's, whose speed is
         # the vehicle's, not the scenario's.
         self.assertGreater(summary["truths"], 100)
         self.assertGreater(summary["distance_flown_m"], 590.0)
+        # Without GPS the firmware's headings are magnetic: over the seek they pointed
+        # the home's declination east of true (the link was told it).
+        self.assertEqual(summary["declination_deg"], sitl.HOME_DECLINATION_DEG)
+        self.assertAlmostEqual(summary["compass_declination_deg"],
+                               sitl.HOME_DECLINATION_DEG, delta=3.0)
         return summary, rec
 
     def test_arducopter_gps_off_arrives(self):

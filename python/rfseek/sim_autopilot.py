@@ -7,7 +7,8 @@ flight over real MAVLink datagrams (docs/live.md "Autopilot").
 
 It speaks as an ArduPlane, ArduCopter or PX4 autopilot (system 1, component 1): HEARTBEAT
 at 1 Hz with its mode and armed state, ATTITUDE at 20 Hz (the yaw of the world's measured
-heading: the autopilot's compass), VFR_HUD at 4 Hz, SYS_STATUS at 1 Hz and
+heading: the autopilot's compass; with declination_deg, a magnetic one that never learnt
+the declination, as without GPS), VFR_HUD at 4 Hz, SYS_STATUS at 1 Hz and
 GLOBAL_POSITION_INT at 2 Hz (the world's position about a reference point: a GPS the
 seeker must never use). It obeys the same command paths the link uses: SET_MODE,
 MAV_CMD_DO_SET_MODE (PX4: OFFBOARD only with a setpoint stream running),
@@ -49,7 +50,7 @@ class sim_autopilot(gr.basic_block):
 
     def __init__(self, link="udpout:127.0.0.1:14550", family="ardupilot_plane", mode="",
                  armed=True, airspeed_mps=10.0, ref_lat_deg=47.0, ref_lon_deg=8.0,
-                 time_scale=1.0):
+                 time_scale=1.0, declination_deg=0.0):
         gr.basic_block.__init__(self, name="sim_autopilot", in_sig=None, out_sig=None)
         if family not in _TYPES:
             raise ValueError("sim_autopilot: family = %r: must be ardupilot_plane, "
@@ -61,7 +62,9 @@ class sim_autopilot(gr.basic_block):
                 ("airspeed_mps", airspeed_mps, 0.0, 100.0, "[0, 100] m/s"),
                 ("ref_lat_deg", ref_lat_deg, -89.0, 89.0,
                  "[-89, 89] deg (the local frame's origin; not at a pole)"),
-                ("ref_lon_deg", ref_lon_deg, -180.0, 180.0, "[-180, 180] deg")):
+                ("ref_lon_deg", ref_lon_deg, -180.0, 180.0, "[-180, 180] deg"),
+                ("declination_deg", declination_deg, -180.0, 180.0,
+                 "[-180, 180] deg east of true north")):
             if not (isinstance(value, numbers.Real) and lo <= value <= hi):
                 raise ValueError("sim_autopilot: %s = %r: must be in %s" % (name, value, what))
         self.time_scale = float(time_scale)
@@ -72,6 +75,9 @@ class sim_autopilot(gr.basic_block):
         self.armed = bool(armed)
         self.airspeed = float(airspeed_mps)
         self.ref = (math.radians(ref_lat_deg), math.radians(ref_lon_deg))
+        # A compass that never learnt the declination (no GPS): it reads and flies
+        # magnetic headings, true ones turned by -declination (counter-clockwise).
+        self.declination = math.radians(declination_deg)
         self.transport = mavlink_transport(link, "sim_autopilot")
         self.parser = _mav.parser()
         self.silent = False
@@ -119,6 +125,7 @@ class sim_autopilot(gr.basic_block):
             pass
 
     def _fly(self, theta):
+        theta = math.remainder(theta - self.declination, 2 * math.pi)  # magnetic -> true
         self.headings.append((time.monotonic(), theta))
         self.message_port_pub(pmt.intern("cmd"), pmt.to_pmt({"heading": float(theta)}))
 
@@ -214,14 +221,15 @@ class sim_autopilot(gr.basic_block):
         if k % 5 == 0:
             m = _mav.message("ATTITUDE")
             m.set("time_boot_ms", now_ms)
-            m.set("yaw", math.remainder(math.pi / 2 - float(st["measured_heading"]),
-                                        2 * math.pi))
+            magnetic = float(st["measured_heading"]) + self.declination
+            m.set("yaw", math.remainder(math.pi / 2 - magnetic, 2 * math.pi))
             self._send(m)
         if k % 25 == 0:
             m = _mav.message("VFR_HUD")
             m.set("airspeed", self.airspeed)
             m.set("groundspeed", self.airspeed)
-            compass = (90.0 - math.degrees(float(st["measured_heading"]))) % 360.0
+            magnetic = float(st["measured_heading"]) + self.declination
+            compass = (90.0 - math.degrees(magnetic)) % 360.0
             m.set("heading", int(compass) % 360)
             m.set("throttle", 50)
             self._send(m)

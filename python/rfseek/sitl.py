@@ -37,6 +37,10 @@ _mav = _core.mavlink
 #: Where the firmware starts (ArduPilot's test site, CMAC): lat, lon (deg), altitude
 #: (m above sea level), heading (deg). The emitter's ground is the home's height.
 HOME = (-35.363261, 149.165230, 584.0, 353.0)
+#: The magnetic declination at HOME (deg east of true north), as ArduPilot's own table
+#: gives it there with GPS (COMPASS_DEC 0.2234 rad). Without GPS the firmware flies and
+#: reports magnetic headings; the rehearsal tells the link this declination.
+HOME_DECLINATION_DEG = 12.8
 EARTH_RADIUS_M = 6378137.0
 
 #: The vehicles: binary (relative to the SITL folder), how to start it, the link's
@@ -450,7 +454,8 @@ class truth_reader:
     ATTITUDE sent in the same stream. `link` is the truth's port (sitl_process's
     truth_link: ArduPilot tcp:127.0.0.1:5762 + 10 x instance, PX4 udpin:127.0.0.1:19410).
     Positions are east/north/up from `home` (the emitter's ground is the home's height);
-    the heading is true, counter-clockwise from east.
+    the heading is true, counter-clockwise from east; "reported_heading" is the
+    autopilot's own (its ATTITUDE yaw: magnetic without GPS), for the scoring.
 
     Read by the world and the scoring only: never connect it to the estimator, the
     controller or the link."""
@@ -498,9 +503,10 @@ class truth_reader:
             lat = m.get("lat_int") / 1e7 if m.get("lat_int") else m.get("lat")
             lon = m.get("lon_int") / 1e7 if m.get("lon_int") else m.get("lon")
             e, n, u = lla_to_local(lat, lon, m.get("alt"), self.home)
-            return {"time": self.client.time_boot_ms / 1e3, "east": e, "north": n, "up": u,
-                    "v_east": m.get("ve"), "v_north": m.get("vn"), "v_up": -m.get("vd"),
-                    "heading": math.pi / 2 - m.get("yaw")}
+            return self._with_report({
+                "time": self.client.time_boot_ms / 1e3, "east": e, "north": n, "up": u,
+                "v_east": m.get("ve"), "v_north": m.get("vn"), "v_up": -m.get("vd"),
+                "heading": math.pi / 2 - m.get("yaw")})
         if m.name == "HIL_STATE_QUATERNION":
             usec = m.get_int("time_usec")
             if usec <= 0 and self.client.time_boot_ms is None:
@@ -508,11 +514,18 @@ class truth_reader:
             e, n, u = lla_to_local(m.get("lat") / 1e7, m.get("lon") / 1e7,
                                    m.get("alt") / 1e3, self.home)
             q = [m.get("attitude_quaternion", i) for i in range(4)]
-            return {"time": usec / 1e6 if usec > 0 else self.client.time_boot_ms / 1e3,
-                    "east": e, "north": n, "up": u,
-                    "v_east": m.get("vy") / 100.0, "v_north": m.get("vx") / 100.0,
-                    "v_up": -m.get("vz") / 100.0, "heading": math.pi / 2 - _quat_yaw(*q)}
+            return self._with_report({
+                "time": usec / 1e6 if usec > 0 else self.client.time_boot_ms / 1e3,
+                "east": e, "north": n, "up": u,
+                "v_east": m.get("vy") / 100.0, "v_north": m.get("vx") / 100.0,
+                "v_up": -m.get("vz") / 100.0, "heading": math.pi / 2 - _quat_yaw(*q)})
         return None
+
+    def _with_report(self, truth):
+        att = self.client.last.get("ATTITUDE")
+        if att is not None:
+            truth["reported_heading"] = math.pi / 2 - att.get("yaw")
+        return truth
 
     def close(self):
         self.client.close()

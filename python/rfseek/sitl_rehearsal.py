@@ -23,7 +23,7 @@ from gnuradio import gr
 from . import rfseek_python as _core
 from .autopilot_link import autopilot_link
 from .flowgraphs import collector
-from .sitl import HOME, SitlError, sitl_process, truth_reader
+from .sitl import HOME, HOME_DECLINATION_DEG, SitlError, sitl_process, truth_reader
 from .sitl_pilot import pilot
 
 
@@ -162,10 +162,11 @@ def scenario_for(vehicle, distance_m=800.0, seed=1, altitude_m=None, sets=()):
     return sc
 
 
-def _link_settings(proc, p, speedup, tlog):
+def _link_settings(proc, p, speedup, tlog, declination_deg):
     """autopilot_link's settings for a vehicle of profile p behind the SITL proc."""
     link = {"link": proc.link, "family": proc.spec["family"], "time_scale": speedup,
-            "link_timeout_s": 2.0, "tlog": tlog or "", "clock": "autopilot"}
+            "link_timeout_s": 2.0, "tlog": tlog or "", "clock": "autopilot",
+            "declination_deg": declination_deg}
     for k in ("pitch_deg", "thrust", "heading_accel_mps2"):
         if k in p:
             link[k] = p[k]
@@ -178,11 +179,16 @@ def _link_settings(proc, p, speedup, tlog):
 
 def rehearse(vehicle, distance_m=800.0, strategy="adaptive", seed=1, speedup=10.0,
              wind=None, altitude_m=None, sitl_dir=None, tlog=None, self_arrival=False,
-             sets=(), progress_every=0, log=None, wall_cap_s=600.0):
+             sets=(), progress_every=0, log=None, wall_cap_s=600.0,
+             declination_deg=HOME_DECLINATION_DEG):
     """One seek flown by the SITL firmware of `vehicle` from `distance_m`; returns the
     summary dict and the run's records (truths, states, statuses). Raises SitlError
     (one line) when the SITL cannot be started, answers not, or refuses a step; every
-    process started is stopped whatever happens."""
+    process started is stopped whatever happens. declination_deg: what the link is
+    told of the home's declination (0: the seek and its fix in the compass's frame)."""
+    if not (isinstance(declination_deg, (int, float)) and -180 <= declination_deg <= 180):
+        raise ValueError("declination_deg = %r: must be in [-180, 180] (deg east of true "
+                         "north)" % (declination_deg,))
     log = log or (lambda text: None)
     p = PROFILES[vehicle]
     sc = scenario_for(vehicle, distance_m, seed, altitude_m, sets)
@@ -208,7 +214,8 @@ def rehearse(vehicle, distance_m=800.0, strategy="adaptive", seed=1, speedup=10.
             reader.start_streams(since_s=pl.clock())
             t_seek = time.monotonic()
             try:
-                loop = sitl_loop(sc, cfg, reader, _link_settings(proc, p, speedup, tlog),
+                loop = sitl_loop(sc, cfg, reader,
+                                 _link_settings(proc, p, speedup, tlog, declination_deg),
                                  progress_every)
             except OSError as e:
                 raise SitlError("the link to %s: %s" % (proc.link, e)) from None
@@ -248,6 +255,8 @@ def rehearse(vehicle, distance_m=800.0, strategy="adaptive", seed=1, speedup=10.
         "height_min_m": min(t["up"] for t in loop.truth.truths),
         "height_max_m": max(t["up"] for t in loop.truth.truths),
         "link": loop.link.status(),
+        "declination_deg": declination_deg,
+        "compass_declination_deg": _compass_declination(loop.truth.truths),
     }
     if sc.self_arrival:  # declared where, and the fix against the true emitter
         from .flowgraphs import arrival_summary
@@ -256,6 +265,15 @@ def rehearse(vehicle, distance_m=800.0, strategy="adaptive", seed=1, speedup=10.
     return summary, {"truths": loop.truth.truths, "states": states,
                      "status": loop.collector.status, "telemetry": loop.collector.telemetry,
                      "meas": loop.collector.meas}
+
+
+def _compass_declination(truths):
+    """How far east of true north the autopilot's own headings pointed: the median, over
+    the seek, of the true heading less the reported one (deg, compass sense); None
+    without reports."""
+    d = sorted(math.degrees(math.remainder(t["reported_heading"] - t["heading"], 2 * math.pi))
+               for t in truths if "reported_heading" in t)
+    return d[len(d) // 2] if d else None
 
 
 def trajectory(summary, rec, path):

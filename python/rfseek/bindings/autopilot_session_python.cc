@@ -4,7 +4,7 @@
  */
 
 /* BINDTOOL_HEADER_FILE(autopilot_session.h) */
-/* BINDTOOL_HEADER_FILE_HASH(3e104e0a1cc7c6bf5bcc23c906a04162) */
+/* BINDTOOL_HEADER_FILE_HASH(036a30bcec68ac156173b6a418126a7a) */
 
 #include <gr-rfseek/autopilot_session.h>
 #include <pybind11/pybind11.h>
@@ -98,6 +98,12 @@ void bind_autopilot_config(py::module& m)
                 "'ardupilot_plane', 'ardupilot_copter' or 'px4': the command path.")
             .def_readwrite(
                 "mode", &autopilot_config::mode, "Mode to command in ('': the family's).")
+            .def_readwrite("declination_deg",
+                           &autopilot_config::declination_deg,
+                           "The site's magnetic declination (deg east of true north, "
+                           "[-180, 180]): added to reported headings, taken from "
+                           "commanded ones, so that the seeker works from true north "
+                           "with an autopilot whose compass is magnetic (no GPS).")
             .def_readwrite(
                 "target_system",
                 &autopilot_config::target_system,

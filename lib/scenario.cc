@@ -400,17 +400,34 @@ const std::vector<preset_def>& preset_table()
             { "airspeed_error_mps", "0.5" },
             { "turn_rate_rad_per_s", "0.5235987755982988" } } },
         { "fixedwing15",
-          "a fixed wing at 15 m/s: coordinated turns at a 30 deg bank (22 deg/s), "
-          "60 deg/s roll rate",
+          "a fixed wing at 15 m/s turning as ArduPlane's firmware does (SITL): "
+          "coordinated turns at an effective 24.8 deg bank (17 deg/s), 40 deg/s roll "
+          "rate",
           { { "speed_mps", "15" },
-            { "bank_limit_rad", "0.5235987755982988" },
-            { "roll_rate_rad_per_s", "1.0471975511965976" } } },
+            { "bank_limit_rad", "0.4328416544945937" },
+            { "roll_rate_rad_per_s", "0.6981317007977318" } } },
         { "fixedwing25",
-          "a fixed wing at 25 m/s: coordinated turns at a 30 deg bank (13 deg/s), "
-          "60 deg/s roll rate",
+          "a fixed wing at 25 m/s turning as ArduPlane's firmware does (SITL): "
+          "coordinated turns at an effective 24.8 deg bank (10.4 deg/s), 40 deg/s roll "
+          "rate",
           { { "speed_mps", "25" },
-            { "bank_limit_rad", "0.5235987755982988" },
-            { "roll_rate_rad_per_s", "1.0471975511965976" } } },
+            { "bank_limit_rad", "0.4328416544945937" },
+            { "roll_rate_rad_per_s", "0.6981317007977318" } } },
+        { "arduplane",
+          "ArduPlane's SITL plane in GUIDED, GPS off (docs/sitl.md): 23.6 m/s, 100 m, "
+          "turns of 11.0 deg/s (an effective 24.8 deg bank), 40 deg/s roll rate",
+          { { "speed_mps", "23.6" },
+            { "altitude_m", "100" },
+            { "bank_limit_rad", "0.4328416544945937" },
+            { "roll_rate_rad_per_s", "0.6981317007977318" } } },
+        { "arducopter",
+          "ArduCopter's SITL quad in GUIDED_NOGPS at 15 deg of pitch with the link's "
+          "coordinated turns (docs/sitl.md): 6.1 m/s, 50 m, 15 deg bank, 30 deg/s roll "
+          "rate",
+          { { "speed_mps", "6.1" },
+            { "altitude_m", "50" },
+            { "bank_limit_rad", "0.2617993877991494" },
+            { "roll_rate_rad_per_s", "0.5235987755982988" } } },
     };
     return table;
 }

@@ -307,7 +307,7 @@ TEST(adaptive, a_turn_limited_acquisition_turns_toward_the_emitter)
 {
     // The acquisition turn starts to the left; the side test reverses it when the
     // Doppler along the first degrees of arc says the emitter is on the right. After
-    // 8 s (at most about 100 deg at 13 deg/s) the vehicle has turned toward the emitter
+    // 8 s (at most about 80 deg at 10.4 deg/s) the vehicle has turned toward the emitter
     // whichever side it is on, for a fixed wing at 25 m/s and a plain 10 deg/s limit.
     for (const char* preset : { "fixedwing25", "reference" })
         for (double rel_deg : { -120.0, -60.0, 60.0, 120.0 })

@@ -106,9 +106,11 @@ TEST(TurnModel, ReversalTimeMatchesTheClosedForm)
 TEST(TurnModel, WorldFliesTheBankLimitedCircle)
 {
     // A command always 90 deg ahead: after the roll the world flies a circle of radius
-    // v^2 / (g tan(bank)), at a bank of 30 deg.
+    // v^2 / (g tan(bank)), at the preset's bank (ArduPlane's effective 24.8 deg).
     scenario sc;
     sc.apply_preset("fixedwing25");
+    const double bank = sc.bank_limit_rad;
+    EXPECT_NEAR(bank, 24.8 * DEG, 1e-12);
     sc.add_noise = false;
     sc.heading_noise_rad = 0.0;
     sc.initial_distance_m = 100000.0;
@@ -120,11 +122,11 @@ TEST(TurnModel, WorldFliesTheBankLimitedCircle)
         if (i >= 200) { // rolled in long ago
             xs.push_back(w.x_m());
             ys.push_back(w.y_m());
-            EXPECT_NEAR(w.bank_rad(), 30.0 * DEG, 1e-9);
+            EXPECT_NEAR(w.bank_rad(), bank, 1e-9);
         }
     }
     // Centre from the mean of the points over whole turns; radius from each point.
-    const double radius = 25.0 * 25.0 / (G * std::tan(30.0 * DEG));
+    const double radius = 25.0 * 25.0 / (G * std::tan(bank));
     const double period = 2.0 * M_PI * radius / 25.0 / sc.slot_period_s; // slots
     const std::size_t n = static_cast<std::size_t>(std::floor(2.0 * period));
     double cx = 0.0, cy = 0.0;
@@ -151,7 +153,7 @@ TEST(TurnModel, WorldRollsBeforeItTurns)
     const double exact = G / (15.0 * p) * -std::log(std::cos(p * dt));
     EXPECT_NEAR(w.heading_rad() - h0, exact, 0.02 * exact);
     EXPECT_NEAR(w.bank_rad(), p * dt, 1e-12);
-    EXPECT_LT(w.heading_rad() - h0, 0.1 * G * std::tan(30.0 * DEG) / 15.0 * dt);
+    EXPECT_LT(w.heading_rad() - h0, 0.1 * G * std::tan(sc.bank_limit_rad) / 15.0 * dt);
 }
 
 TEST(TurnModel, LimitsAreChecked)

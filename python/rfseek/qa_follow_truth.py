@@ -158,12 +158,27 @@ class qa_follow_truth(gr_unittest.TestCase):
         self.assertAlmostEqual(t["time"], 12.345678)
         self.assertAlmostEqual(t["heading"], math.radians(60.0), delta=1e-6)
         self.assertAlmostEqual(t["reported_heading"], math.radians(48.0), delta=1e-6)
+        self.assertAlmostEqual(t["bank"], 0.0, delta=1e-9)  # a yaw alone: wings level
+        roll = math.radians(20.0)  # then rolled 20 deg right about the body's x axis
+        qr = (math.cos(roll / 2), math.sin(roll / 2), 0.0, 0.0)
+        qy = [m.get("attitude_quaternion", i) for i in range(4)]
+        w1, x1, y1, z1 = qy
+        w2, x2, y2, z2 = qr
+        for i, q in enumerate((w1 * w2 - x1 * x2 - y1 * y2 - z1 * z2,
+                               w1 * x2 + x1 * w2 + y1 * z2 - z1 * y2,
+                               w1 * y2 - x1 * z2 + y1 * w2 + z1 * x2,
+                               w1 * z2 + x1 * y2 - y1 * x2 + z1 * w2)):
+            m.set("attitude_quaternion", q, i)
+        t = reader.convert(m)
+        self.assertAlmostEqual(t["bank"], roll, delta=1e-6)
+        self.assertAlmostEqual(t["heading"], math.radians(60.0), delta=1e-6)
         self.assertAlmostEqual(t["v_north"], 3.0)
         self.assertAlmostEqual(t["v_east"], -4.0)
         self.assertAlmostEqual(t["v_up"], 0.5)
         self.assertAlmostEqual(t["up"], 30.0, delta=1e-3)
         s = rfseek.mavlink.message("SIM_STATE")
         s.set("yaw", math.radians(-90.0))  # west
+        s.set("roll", 0.3)
         s.set_int("lat_int", int(round((home[0] + 0.0001) * 1e7)))
         s.set_int("lon_int", int(round(home[1] * 1e7)))
         s.set("alt", home[2] + 50.0)
@@ -172,6 +187,7 @@ class qa_follow_truth(gr_unittest.TestCase):
         s.set("vd", 0.5)
         t = reader.convert(s)
         self.assertAlmostEqual(t["time"], 5.0)  # the clock of the ATTITUDE with it
+        self.assertAlmostEqual(t["bank"], 0.3, delta=1e-6)
         self.assertAlmostEqual(math.remainder(t["heading"] - math.pi, 2 * math.pi), 0.0,
                                delta=1e-6)
         self.assertAlmostEqual(t["north"], math.radians(0.0001) * sitl.EARTH_RADIUS_M,

@@ -4,7 +4,9 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
 #
 """The seek flown by the real firmware: ArduCopter, ArduPlane and PX4 (SIH quad) SITL,
-GPS off, about 800 m, each must arrive; and the rehearsal's bad inputs, each one line,
+GPS off, about 800 m, each must arrive; the firmware's response to the link's heading
+steps matches the module's model of it (the arduplane and arducopter presets) within
+sitl_response.TOLERANCES; and the rehearsal's bad inputs, each one line,
 with every process it started stopped. Runs whenever SITL builds are found (--sitl,
 $RFSEEK_SITL, or ../shared/sitl beside the source tree); otherwise each test says it is
 skipped and why."""
@@ -19,7 +21,8 @@ import time
 import unittest
 
 from gnuradio import gr_unittest
-from gnuradio.rfseek import sitl, sitl_pilot, sitl_rehearsal
+from gnuradio import rfseek
+from gnuradio.rfseek import sitl, sitl_pilot, sitl_rehearsal, sitl_response
 
 # Under the sanitizers (scripts/sanitize.sh) the receive chain runs several times
 # slower; the main test job flies every vehicle, this job the copter's seek.
@@ -107,6 +110,34 @@ class qa_sitl(gr_unittest.TestCase):
                      "copter's seek only")
     def test_px4_quad_gps_off_arrives(self):
         self.fly("px4_quad", 13)
+
+    def respond(self, vehicle, preset):
+        # The rehearsal's profile is the preset's airframe.
+        sc, ref = sitl_rehearsal.scenario_for(vehicle), rfseek.scenario()
+        ref.apply_preset(preset)
+        for key in ("speed_mps", "bank_limit_rad", "roll_rate_rad_per_s"):
+            self.assertAlmostEqual(getattr(sc, key), getattr(ref, key), places=9, msg=key)
+        samples, starts = sitl_response.fly_sitl(vehicle, 10.0, SITL, lambda text: None)
+        firmware = {"steps": sitl_response.reduce_steps(samples, starts),
+                    "legs": sitl_response.legs(samples, starts)}
+        m_samples, m_starts = sitl_response.fly_model(ref)
+        model = {"steps": sitl_response.reduce_steps(m_samples, m_starts),
+                 "legs": sitl_response.legs(m_samples, m_starts)}
+        sys.stderr.write(sitl_response.table(vehicle, firmware, model) + "\n")
+        checks = sitl_response.compare(firmware, model)
+        self.assertEqual(len(firmware["steps"]), len(sitl_response.SCHEDULE) - 1)
+        # Every figure compared: the rate, bank and roll-in of the three long turns,
+        # the settling of all five, the legs.
+        self.assertGreaterEqual(len(checks), 3 * 2 + 5 + 1)
+        self.assertEqual([c for c in checks if not c[4]], [])
+
+    @unittest.skipIf(SANITIZED, "flown by the main test job")
+    def test_arduplane_turns_as_the_model(self):
+        self.respond("arduplane", "arduplane")
+
+    @unittest.skipIf(SANITIZED, "flown by the main test job")
+    def test_arducopter_turns_as_the_model(self):
+        self.respond("arducopter", "arducopter")
 
     def test_bad_inputs_are_one_line_and_leave_nothing_behind(self):
         with self.assertRaises(sitl.SitlError) as cm:

@@ -61,7 +61,7 @@ class qa_turn_bound(gr_unittest.TestCase):
         rows = [l for l in out.getvalue().splitlines() if l.startswith("| 1")
                 or l.startswith("| 2")]
         self.assertEqual(len(rows), 2)
-        # Slower turns at 25 m/s (13 deg/s, radius 110 m) cost more than at 10 m/s.
+        # Slower turns at 25 m/s (10.4 deg/s, radius 138 m) cost more than at 10 m/s.
         self.assertGreater(float(rows[1].split("|")[2]), float(rows[0].split("|")[2]))
         with contextlib.redirect_stdout(out), contextlib.redirect_stderr(err):
             self.assertEqual(turn_bound.main(["--set", "bogus=1", "--runs", "1"]), 2)

@@ -447,6 +447,10 @@ def _quat_yaw(w, x, y, z):
     return math.atan2(2.0 * (w * z + x * y), 1.0 - 2.0 * (y * y + z * z))
 
 
+def _quat_roll(w, x, y, z):
+    return math.atan2(2.0 * (w * x + y * z), 1.0 - 2.0 * (x * x + y * y))
+
+
 class truth_reader:
     """The simulator's true state on its own MAVLink connection, as "truth" dicts for
     channel_source(follow_truth=True): ArduPilot's SIM_STATE (kind "ardupilot"), PX4
@@ -455,7 +459,8 @@ class truth_reader:
     truth_link: ArduPilot tcp:127.0.0.1:5762 + 10 x instance, PX4 udpin:127.0.0.1:19410).
     Positions are east/north/up from `home` (the emitter's ground is the home's height);
     the heading is true, counter-clockwise from east; "reported_heading" is the
-    autopilot's own (its ATTITUDE yaw: magnetic without GPS), for the scoring.
+    autopilot's own (its ATTITUDE yaw: magnetic without GPS) and "bank" the true roll
+    (rad, right wing down positive), for the scoring.
 
     Read by the world and the scoring only: never connect it to the estimator, the
     controller or the link."""
@@ -506,7 +511,7 @@ class truth_reader:
             return self._with_report({
                 "time": self.client.time_boot_ms / 1e3, "east": e, "north": n, "up": u,
                 "v_east": m.get("ve"), "v_north": m.get("vn"), "v_up": -m.get("vd"),
-                "heading": math.pi / 2 - m.get("yaw")})
+                "heading": math.pi / 2 - m.get("yaw"), "bank": m.get("roll")})
         if m.name == "HIL_STATE_QUATERNION":
             usec = m.get_int("time_usec")
             if usec <= 0 and self.client.time_boot_ms is None:
@@ -518,7 +523,8 @@ class truth_reader:
                 "time": usec / 1e6 if usec > 0 else self.client.time_boot_ms / 1e3,
                 "east": e, "north": n, "up": u,
                 "v_east": m.get("vy") / 100.0, "v_north": m.get("vx") / 100.0,
-                "v_up": -m.get("vz") / 100.0, "heading": math.pi / 2 - _quat_yaw(*q)})
+                "v_up": -m.get("vz") / 100.0, "heading": math.pi / 2 - _quat_yaw(*q),
+                "bank": _quat_roll(*q)})
         return None
 
     def _with_report(self, truth):

@@ -121,17 +121,22 @@ class sitl_loop(gr.top_block):
         return bool((d["arrived"] and "reached" not in d) or d["capped"] or d.get("ended"))
 
 
-#: How each vehicle flies the seek: the link's settings and what the seeker believes of
-#: the vehicle (its speed over still air at those settings and its turns), measured in
-#: SITL (docs/live.md "How the firmware flies the link's commands").
+#: How each vehicle flies the seek: the link's settings, and what the seeker and the
+#: in-process simulation believe of the vehicle (its speed over still air at those
+#: settings, its turns): for ArduPilot the scenario presets fitted to the firmware's
+#: own response (sitl_response; docs/sitl.md "How the firmware flies the link's
+#: commands"), whose speed, bank and roll rate are repeated here for the link.
 PROFILES = {
-    "arducopter": {"altitude_m": 50.0, "speed_mps": 6.3, "pitch_deg": 15.0, "thrust": 0.5,
-                   "bank_deg": 15.0, "roll_rate_deg_s": 90.0},
+    # GUIDED_NOGPS at 15 deg of pitch, the link's coordinated turns at 15 deg of bank.
+    "arducopter": {"preset": "arducopter", "altitude_m": 50.0, "speed_mps": 6.1,
+                   "pitch_deg": 15.0, "thrust": 0.5, "bank_deg": 15.0,
+                   "roll_rate_deg_s": 30.0},
     # ArduPlane's GUIDED heading loop at its default gain (GUIDED_P 5000) settles a 10
-    # deg step in about 10 s (a time constant near 3 s); at 15000, in 2-3 s, as the
-    # seeker's turn model (a 31 deg bank at 60 deg/s of roll) flies it.
-    "arduplane": {"altitude_m": 100.0, "speed_mps": 23.4, "bank_deg": 31.0,
-                  "roll_rate_deg_s": 60.0, "heading_accel_mps2": 6.0,
+    # deg step in about 10 s; at 15000 in about 1 s. The link asks for 6 m/s^2 (a 31
+    # deg bank, which it flies); the plane then turns at 11.0 deg/s, as a coordinated
+    # turn at 24.8 deg would.
+    "arduplane": {"preset": "arduplane", "altitude_m": 100.0, "speed_mps": 23.6,
+                  "bank_deg": 24.8, "roll_rate_deg_s": 40.0, "heading_accel_mps2": 6.0,
                   "params": {"GUIDED_P": 15000}},
     # PX4 SIH's quad flies 2.7 m/s at 15 deg of pitch; its lockstep simulator kept up
     # with about 4 x real time here (at 10 x its truth and telemetry came late).
@@ -141,20 +146,20 @@ PROFILES = {
 
 
 def scenario_for(vehicle, distance_m=800.0, seed=1, altitude_m=None, sets=()):
-    """The world of a rehearsal: the reference scenario from `distance_m`, the emitter
-    placed at a bearing drawn from `seed` relative to where the seek starts, the
-    vehicle's speed and turns as the seeker believes them, then `sets` (KEY=VALUE)."""
+    """The world of a rehearsal: the reference scenario (with the vehicle's preset, if
+    it has one) from `distance_m`, the emitter placed at a bearing drawn from `seed`
+    relative to where the seek starts, the vehicle's speed and turns as the seeker
+    believes them, then `sets` (KEY=VALUE)."""
     p = PROFILES[vehicle]
     sc = _core.scenario()
+    if "preset" in p:
+        sc.apply_preset(p["preset"])
     sc.seed = int(seed)
     sc.initial_distance_m = float(distance_m)
     sc.speed_mps = p["speed_mps"]
     sc.altitude_m = float(altitude_m if altitude_m is not None else p["altitude_m"])
-    if "bank_deg" in p:
-        sc.bank_limit_rad = math.radians(p["bank_deg"])
-        sc.roll_rate_rad_per_s = math.radians(p["roll_rate_deg_s"])
-    else:
-        sc.turn_rate_rad_per_s = math.radians(p["turn_rate_deg_s"])
+    sc.bank_limit_rad = math.radians(p["bank_deg"])
+    sc.roll_rate_rad_per_s = math.radians(p["roll_rate_deg_s"])
     for kv in sets:
         key, _, value = kv.partition("=")
         sc.set(key, value)

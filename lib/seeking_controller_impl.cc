@@ -195,6 +195,10 @@ void seeking_controller_impl::handle_meas(const pmt::pmt_t& msg)
     t = pmt::dict_add(t, d_key_stage, pmt::from_long(c.stage));
     t = pmt::dict_add(t, pmt::mp("theta_est"), pmt::from_double(c.theta_est_rad));
     t = pmt::dict_add(t, d_key_heading, pmt::from_double(c.heading_rad));
+    // The vehicle's heading this window was paired with (the meas's or the last nav;
+    // absent when there is none).
+    if (m.has_heading)
+        t = pmt::dict_add(t, pmt::mp("flown_heading"), pmt::from_double(m.heading_rad));
     t = pmt::dict_add(t, pmt::mp("update"), pmt::from_bool(c.update));
     t = pmt::dict_add(t, pmt::mp("holding"), pmt::from_bool(c.holding));
     t = pmt::dict_add(t, pmt::mp("accepted"), pmt::from_bool(c.accepted));

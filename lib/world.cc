@@ -430,8 +430,22 @@ void world::follow(const vehicle_truth& s)
     if (finished())
         throw std::logic_error("world::follow: the run has finished (arrived or capped)");
     if (!d_follow) {
-        // The first truth places the emitter: the vehicle is where the scenario starts.
+        // The first truth places the emitter: the scene (the vehicle's start, the
+        // scatterers) turns about the emitter until the scenario's start heading is the
+        // truth's, so that the emitter's bearing off the nose and the scatterers are the
+        // scenario's (its simulation flies the same geometry); then the truth's frame
+        // is moved onto the vehicle's start.
         d_follow = true;
+        const double a = wrap(s.heading_rad - d_heading), c = std::cos(a),
+                     sn = std::sin(a);
+        const double x0 = d_x;
+        d_x = c * x0 - sn * d_y;
+        d_y = sn * x0 + c * d_y;
+        for (auto& sc : d_scatterers) {
+            const double sx = sc.x_m;
+            sc.x_m = c * sx - sn * sc.y_m;
+            sc.y_m = sn * sx + c * sc.y_m;
+        }
         d_anchor_x = d_x - s.east_m;
         d_anchor_y = d_y - s.north_m;
     } else {

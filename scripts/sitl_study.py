@@ -10,7 +10,10 @@ the module installed):
 
     /usr/bin/python3 scripts/sitl_study.py --vehicle arducopter --distance 1000 \\
         --seeds 1-5 [--strategy adaptive] [--speedup 10] [--wind-from DEG,M_S] [--sitl DIR]
-        [--arrival self] [--declination DEG]
+        [--arrival self] [--declination DEG] [--wind-speed M_S]
+
+With --wind-speed the SITL wind blows at that speed from a direction drawn from each
+seed (or --wind-from's), and the simulated column flies the same mean wind.
 
 Prints one line per seed (arrived, ratio, flight time, wall time, lowest and highest
 height; with --arrival self where it declared and the fix's error against the true
@@ -21,9 +24,9 @@ straight line to the 200 m arrival radius.
 
 import argparse
 import math
+import random
 import statistics
 import sys
-import time
 
 
 def seeds(text):
@@ -48,6 +51,8 @@ def main(argv):
     p.add_argument("--strategy", default="adaptive")
     p.add_argument("--speedup", type=float, default=10.0)
     p.add_argument("--wind-from", type=wind, default=None)
+    p.add_argument("--wind-speed", type=float, default=None,
+                   help="wind of this speed (m/s) from a direction drawn from the seed")
     p.add_argument("--sitl", default=None)
     p.add_argument("--arrival", default="oracle", choices=("oracle", "self"))
     p.add_argument("--declination", type=float, default=None,
@@ -57,25 +62,36 @@ def main(argv):
     from gnuradio.rfseek import sitl_rehearsal
     rows = []
     for seed in a.seeds:
-        sc = sitl_rehearsal.scenario_for(a.vehicle, a.distance, seed)
-        sim = rfseek.simulation(sc, rfseek.simulation.seeker_for(sc, a.strategy)).run()
-        t = time.monotonic()
+        wind_ = a.wind_from
+        if a.wind_speed is not None:
+            wind_ = (a.wind_speed, random.Random(seed).uniform(0.0, 360.0))
         kw = {} if a.declination is None else {"declination_deg": a.declination}
         s, _ = sitl_rehearsal.rehearse(a.vehicle, a.distance, a.strategy, seed, a.speedup,
-                                       a.wind_from, sitl_dir=a.sitl,
+                                       wind_, sitl_dir=a.sitl,
                                        self_arrival=a.arrival == "self", **kw)
+        # The simulation of the same scenario: the SITL's scene was turned from the
+        # scenario's start heading to the hand-over's; its wind is turned back for the
+        # simulation, so that both fly the same geometry in the same wind.
+        sc = sitl_rehearsal.scenario_for(a.vehicle, a.distance, seed)
+        if wind_ is not None:  # (speed, from)
+            turn = s["start_heading_rad"] - rfseek.world(sc).heading_rad
+            sc.wind_speed_mps = wind_[0]
+            sc.wind_to_rad = math.remainder(math.radians(90.0 - (wind_[1] + 180.0)) - turn,
+                                            2 * math.pi)
+        sim = rfseek.simulation(sc, rfseek.simulation.seeker_for(sc, a.strategy)).run()
         rows.append((s, sim))
         arr = s.get("arrival", {})
         print("seed %3d  %s  ratio %.3f (simulated %.3f)  flight %6.1f s  wall %5.1f s  "
-              "height %.1f-%.1f m  compass %.1f deg east%s" % (
+              "height %.1f-%.1f m  compass %.1f deg east%s%s" % (
                   seed, "arrived" if s["success"] else "FAILED ", s["ratio"],
-                  sim.summary.ratio, s["time_s"], time.monotonic() - t,
+                  sim.summary.ratio, s["time_s"], s["wall_s"],
                   s["height_min_m"], s["height_max_m"], s["compass_declination_deg"] or 0.0,
                   ("  declared %s at %.0f m, fix error %s" % (
                       arr["declared"], arr.get("arrival_detect_distance_m", float("nan")),
                       "%.1f m (in ellipse: %s)" % (arr["location_error_m"],
                                                    arr["location_in_ellipse"])
-                      if arr.get("located") else "none")) if arr else ""), flush=True)
+                      if arr.get("located") else "none")) if arr else "",
+                  "  wind %.1f m/s from %.0f deg" % wind_ if wind_ else ""), flush=True)
     ok = [(s, sim) for s, sim in rows if s["success"] and sim.summary.success]
     arrived = sum(s["success"] for s, _ in rows)
     diffs = [s["ratio"] - sim.summary.ratio for s, sim in ok]

@@ -163,9 +163,11 @@ public:
      * Follow a vehicle flown by something else: this slot's state is the truth `s`
      * (its position, height, ground velocity and heading; the Doppler of every path is
      * that velocity along the direction to the path's source, climbs included). The
-     * first call places the emitter: the vehicle is then where the scenario starts it
-     * (initial_distance_m at start_angle_rad from the emitter), whatever the truth's
-     * frame. Each later call is the next slot, at a time not before the last one's;
+     * first call places the emitter: the scene turns about the emitter by the truth's
+     * heading less the scenario's start heading, and the truth's frame is moved onto
+     * the vehicle's start, so that the vehicle starts initial_distance_m from the
+     * emitter with it (and the scatterers) where the scenario's start heading sees
+     * them. Each later call is the next slot, at a time not before the last one's;
      * the carrier offset advances by the time between them, and distance_flown_m()
      * by the track's length. advance() is refused from the first call on.
      * std::invalid_argument for a non-finite field or a time that goes back,

@@ -221,10 +221,11 @@ TEST(ground_track, a_forecast_beyond_the_limit_does_not_wind_the_learned_crab_up
         t = 4.0 * k;
         b = M_PI + 0.0005 * t;
         EXPECT_LE(g.update(t, b, 0.01), max + 1e-12);
-        if (k > 0) // from the first step on, the learned part keeps the sum in
+        if (k > 0) { // from the first step on, the learned part keeps the sum in
             EXPECT_LE(g.forecast_crab_rad(g.bearing_rad()) + g.learned_crab_rad(),
                       max + 1e-12)
                 << t;
+        }
     }
     EXPECT_NEAR(g.crab_rad(), max, 0.5 * DEG);
     const double t0 = t, b0 = b;

@@ -536,8 +536,10 @@ TEST(world, follow_gives_the_doppler_of_the_true_motion)
     s.start_angle_rad = 2.0;
     world w(s);
     const double lambda = C / s.carrier_hz;
-    // The truth's frame is offset from the world's: the first state places the emitter.
-    const double e0 = 1234.5, n0 = -987.0;
+    // The truth's frame is offset from the world's: the first state places the emitter,
+    // the scene turned by the first heading less the scenario's start heading.
+    const double e0 = 1234.5, n0 = -987.0,
+                 turn = world::wrap(-1.0 + 0.2 - w.heading_rad());
     double flown = 0.0, px = 0.0, py = 0.0;
     for (int k = 0; k < 12; ++k) {
         gr::rfseek::vehicle_truth t;
@@ -552,8 +554,8 @@ TEST(world, follow_gives_the_doppler_of_the_true_motion)
         t.heading_rad = track + 0.2; // a crab: the yaw is not the track
         w.follow(t);
         // Where the scenario starts the vehicle, then the truth's displacements.
-        const double x = 800.0 * std::cos(2.0) + (t.east_m - e0);
-        const double y = 800.0 * std::sin(2.0) + (t.north_m - n0);
+        const double x = 800.0 * std::cos(2.0 + turn) + (t.east_m - e0);
+        const double y = 800.0 * std::sin(2.0 + turn) + (t.north_m - n0);
         ASSERT_EQ(w.slot(), static_cast<std::uint64_t>(k));
         EXPECT_NEAR(w.x_m(), x, 1e-9);
         EXPECT_NEAR(w.y_m(), y, 1e-9);
@@ -573,6 +575,46 @@ TEST(world, follow_gives_the_doppler_of_the_true_motion)
             << "slot " << k;
     }
     EXPECT_THROW(w.advance(0.0), std::logic_error);
+}
+
+// The first truth turns the scene about the emitter: whatever heading the vehicle has
+// when it is handed over, the emitter's bearing off its nose and every scatterer's
+// range and bearing off the nose are the scenario's, as its own simulation starts.
+TEST(world, follow_turns_the_scene_to_the_vehicles_heading)
+{
+    scenario s;
+    s.seed = 7;
+    s.num_scatterers = 5;
+    for (double heading : { 0.3, -2.5, 3.0 }) {
+        world native(s), w(s);
+        gr::rfseek::vehicle_truth t;
+        t.time_s = 10.0;
+        t.east_m = -300.0;
+        t.north_m = 4200.0;
+        t.heading_rad = heading;
+        w.follow(t);
+        EXPECT_NEAR(w.distance_m(), native.distance_m(), 1e-9);
+        EXPECT_NEAR(world::wrap(w.bearing_to_emitter_rad() - w.heading_rad()),
+                    world::wrap(native.bearing_to_emitter_rad() - native.heading_rad()),
+                    1e-12);
+        ASSERT_EQ(w.scatterers().size(), 5u);
+        for (std::size_t i = 0; i < 5; ++i) {
+            const auto &a = w.scatterers()[i], &b = native.scatterers()[i];
+            const double ra = std::hypot(a.x_m - w.x_m(), a.y_m - w.y_m());
+            const double rb = std::hypot(b.x_m - native.x_m(), b.y_m - native.y_m());
+            EXPECT_NEAR(ra, rb, 1e-9);
+            EXPECT_NEAR(
+                world::wrap(std::atan2(a.y_m - w.y_m(), a.x_m - w.x_m()) - heading),
+                world::wrap(std::atan2(b.y_m - native.y_m(), b.x_m - native.x_m()) -
+                            native.heading_rad()),
+                1e-9);
+        }
+        // The paths' lengths, hence the received field, are the scenario's.
+        const auto pa = w.paths(), pb = native.paths();
+        ASSERT_EQ(pa.size(), pb.size());
+        for (std::size_t i = 0; i < pa.size(); ++i)
+            EXPECT_NEAR(pa[i].length_m, pb[i].length_m, 1e-6);
+    }
 }
 
 TEST(world, follow_advances_the_carrier_offset_by_the_truths_clock)
@@ -605,6 +647,7 @@ TEST(world, follow_arrives_within_the_success_radius)
     s.start_angle_rad = 0.0; // east of the emitter
     world w(s);
     gr::rfseek::vehicle_truth t;
+    t.heading_rad = w.heading_rad(); // the scenario's start heading: the scene stays
     t.up_m = 50.0;
     t.v_east_mps = -20.0;
     for (int k = 0; !w.finished() && k < 1000; ++k) {

@@ -93,7 +93,9 @@ class qa_follow_truth(gr_unittest.TestCase):
         self.assertEqual(len(ms), expected)
         self.assertEqual(src.truth_count(), len(seq))
         lam = C / sc.carrier_hz
-        x0, y0 = 700.0 * math.cos(1.0), 700.0 * math.sin(1.0)
+        # The scene turned so that the first heading is the scenario's start heading.
+        turn = seq[0]["heading"] - rfseek.world(sc).heading_rad
+        x0, y0 = 700.0 * math.cos(1.0 + turn), 700.0 * math.sin(1.0 + turn)
         for m, s in zip(ms, ss):
             k = int(m["slot"])
             t = seq[0]["time"] + k * sc.slot_period_s

@@ -164,6 +164,32 @@ class qa_sitl(gr_unittest.TestCase):
             self.assertTrue(gone(p))
         finally:
             shutil.rmtree(scratch)
+        # A refused mode change and a refused arming, by the real firmware: one line
+        # naming the step and what the autopilot said; nothing left running.
+        p = sitl.sitl_process("arducopter", SITL, 10.0)
+        with self.assertRaises(sitl.SitlError) as cm:
+            with p:
+                pl = sitl_pilot.pilot(p, wall_timeout_s=60.0)
+                try:
+                    self.assertIsNotNone(pl.client.wait("HEARTBEAT", 30.0))
+                    pl._set_mode("LOITER")  # needs a position: refused without GPS
+                finally:
+                    pl.close()
+        self.assertIn("mode LOITER refused", str(cm.exception))
+        self.assertNotIn("\n", str(cm.exception))
+        self.assertTrue(gone(p))
+        p = sitl.sitl_process("arduplane", SITL, 10.0)
+        with self.assertRaises(sitl.SitlError) as cm:
+            with p:
+                pl = sitl_pilot.pilot(p, wall_timeout_s=60.0)
+                try:
+                    self.assertIsNotNone(pl.client.wait("HEARTBEAT", 30.0))
+                    pl._arm(force=False)  # ordinary arming: refused without GPS
+                finally:
+                    pl.close()
+        self.assertIn("arming: not done", str(cm.exception))
+        self.assertNotIn("\n", str(cm.exception))
+        self.assertTrue(gone(p))
         # A port already in use, on the instance asked for.
         s = socket.socket(socket.AF_INET, socket.SOCK_STREAM)
         s.setsockopt(socket.SOL_SOCKET, socket.SO_REUSEADDR, 1)

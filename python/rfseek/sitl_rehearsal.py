@@ -100,6 +100,10 @@ class sitl_loop(gr.top_block):
         self.estimator = _core.doppler_estimator(sc.samp_rate_hz, sc.window_len,
                                                  sc.fft_len, interpolator="parabolic")
         self.controller = _core.seeking_controller(cfg)
+        # The beacon's tags carry no heading here: the first one comes from the link's
+        # nav. Seeking before it would start from an assumed heading, and the first
+        # commands would send the vehicle off the way the strategy never meant.
+        self.controller.set_wait_for_heading(True)
         self.link = autopilot_link(**link)
         self.collector = collector(progress_every)
         self.connect(self.world, self.estimator)
@@ -261,6 +265,9 @@ def rehearse(vehicle, distance_m=800.0, strategy="adaptive", seed=1, speedup=10.
         "height_max_m": max(t["up"] for t in loop.truth.truths),
         "link": loop.link.status(),
         "declination_deg": declination_deg,
+        # The heading at the hand-over (true): the scene turned from the scenario's
+        # start heading to it (world.follow).
+        "start_heading_rad": loop.truth.truths[0]["heading"],
         "compass_declination_deg": _compass_declination(loop.truth.truths),
     }
     if sc.self_arrival:  # declared where, and the fix against the true emitter

@@ -4,7 +4,7 @@
  */
 
 /* BINDTOOL_HEADER_FILE(world.h) */
-/* BINDTOOL_HEADER_FILE_HASH(68924ba9658300ff99e0b11d3d0ded50) */
+/* BINDTOOL_HEADER_FILE_HASH(04362874d32c631b73cf66e1311de7ed) */
 
 #include <gr-rfseek/world.h>
 #include <pybind11/complex.h>
@@ -150,8 +150,10 @@ void bind_world_follow(py::module& m, py::class_<gr::rfseek::world>& w)
           &world::follow,
           py::arg("truth"),
           "This slot's state is the truth (a vehicle flown by SITL): the first call "
-          "places the emitter (the vehicle where the scenario starts it), each later "
-          "one is the next slot. ValueError for a non-finite field or a time before the "
+          "places the emitter (the vehicle where the scenario starts it, the scene "
+          "turned about the emitter so that the truth's heading sees it as the "
+          "scenario's start heading does), each later one is the next slot. ValueError "
+          "for a non-finite field or a time before the "
           "last; RuntimeError once finished.");
     w.def_property_readonly("following", &world::following, "follow() has been called.");
     w.def_property_readonly(

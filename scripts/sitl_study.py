@@ -10,10 +10,11 @@ the module installed):
 
     /usr/bin/python3 scripts/sitl_study.py --vehicle arducopter --distance 1000 \\
         --seeds 1-5 [--strategy adaptive] [--speedup 10] [--wind-from DEG,M_S] [--sitl DIR]
-        [--arrival self] [--declination DEG] [--wind-speed M_S]
+        [--arrival self] [--declination DEG] [--wind-speed M_S] [--pitch DEG]
 
 With --wind-speed the SITL wind blows at that speed from a direction drawn from each
-seed (or --wind-from's), and the simulated column flies the same mean wind.
+seed (or --wind-from's), and the simulated column flies the same mean wind; both
+ratios are then the track over the ground.
 
 Prints one line per seed (arrived, ratio, flight time, wall time, lowest and highest
 height; with --arrival self where it declared and the fix's error against the true
@@ -51,6 +52,8 @@ def main(argv):
     p.add_argument("--strategy", default="adaptive")
     p.add_argument("--speedup", type=float, default=10.0)
     p.add_argument("--wind-from", type=wind, default=None)
+    p.add_argument("--pitch", type=float, default=None,
+                   help="ArduCopter's forward pitch (deg; 5, 15, 25 or 30; default 15)")
     p.add_argument("--wind-speed", type=float, default=None,
                    help="wind of this speed (m/s) from a direction drawn from the seed")
     p.add_argument("--sitl", default=None)
@@ -68,23 +71,31 @@ def main(argv):
         kw = {} if a.declination is None else {"declination_deg": a.declination}
         s, _ = sitl_rehearsal.rehearse(a.vehicle, a.distance, a.strategy, seed, a.speedup,
                                        wind_, sitl_dir=a.sitl,
-                                       self_arrival=a.arrival == "self", **kw)
+                                       self_arrival=a.arrival == "self",
+                                       pitch_deg=a.pitch, **kw)
         # The simulation of the same scenario: the SITL's scene was turned from the
         # scenario's start heading to the hand-over's; its wind is turned back for the
         # simulation, so that both fly the same geometry in the same wind.
-        sc = sitl_rehearsal.scenario_for(a.vehicle, a.distance, seed)
+        sc = sitl_rehearsal.scenario_for(a.vehicle, a.distance, seed, pitch_deg=a.pitch)
         if wind_ is not None:  # (speed, from)
             turn = s["start_heading_rad"] - rfseek.world(sc).heading_rad
             sc.wind_speed_mps = wind_[0]
             sc.wind_to_rad = math.remainder(math.radians(90.0 - (wind_[1] + 180.0)) - turn,
                                             2 * math.pi)
-        sim = rfseek.simulation(sc, rfseek.simulation.seeker_for(sc, a.strategy)).run()
-        rows.append((s, sim))
+        sim = rfseek.simulation(sc, rfseek.simulation.seeker_for(sc, a.strategy)).run(True)
+        # The SITL's ratio is the true track over the ground (in wind too): so is the
+        # simulation's, from its positions (its own ratio is through the air).
+        c = sim.columns()
+        ground = sum(math.hypot(x1 - x0, y1 - y0) for x0, y0, x1, y1 in zip(
+            c["x_m"], c["y_m"], c["x_m"][1:], c["y_m"][1:]))
+        sim_ratio = (ground / sim.summary.shortest_path_m if wind_ is not None
+                     else sim.summary.ratio)
+        rows.append((s, sim, sim_ratio))
         arr = s.get("arrival", {})
         print("seed %3d  %s  ratio %.3f (simulated %.3f)  flight %6.1f s  wall %5.1f s  "
               "height %.1f-%.1f m  compass %.1f deg east%s%s" % (
                   seed, "arrived" if s["success"] else "FAILED ", s["ratio"],
-                  sim.summary.ratio, s["time_s"], s["wall_s"],
+                  sim_ratio, s["time_s"], s["wall_s"],
                   s["height_min_m"], s["height_max_m"], s["compass_declination_deg"] or 0.0,
                   ("  declared %s at %.0f m, fix error %s" % (
                       arr["declared"], arr.get("arrival_detect_distance_m", float("nan")),
@@ -92,11 +103,11 @@ def main(argv):
                                                    arr["location_in_ellipse"])
                       if arr.get("located") else "none")) if arr else "",
                   "  wind %.1f m/s from %.0f deg" % wind_ if wind_ else ""), flush=True)
-    ok = [(s, sim) for s, sim in rows if s["success"] and sim.summary.success]
-    arrived = sum(s["success"] for s, _ in rows)
-    diffs = [s["ratio"] - sim.summary.ratio for s, sim in ok]
+    ok = [(s, r) for s, sim, r in rows if s["success"] and sim.summary.success]
+    arrived = sum(s["success"] for s, _, _ in rows)
+    diffs = [s["ratio"] - r for s, r in ok]
     mean = statistics.mean(s["ratio"] for s, _ in ok) if ok else float("nan")
-    sim_mean = statistics.mean(sim.summary.ratio for _, sim in ok) if ok else float("nan")
+    sim_mean = statistics.mean(r for _, r in ok) if ok else float("nan")
     se = statistics.stdev(diffs) / math.sqrt(len(diffs)) if len(diffs) > 1 else float("nan")
     print("%s %s from %.0f m, %d seeds: arrived %d/%d; mean ratio %.3f (simulated %.3f); "
           "paired difference %+.3f +- %.3f" % (

@@ -149,12 +149,35 @@ PROFILES = {
 }
 
 
-def scenario_for(vehicle, distance_m=800.0, seed=1, altitude_m=None, sets=()):
+#: ArduCopter SITL's speed over the ground (m/s) in GUIDED_NOGPS by the link's forward
+#: pitch (deg), still air (sitl_response; docs/sitl.md). A steeper pitch flies faster:
+#: for wind near the 15 deg speed.
+COPTER_SPEED_AT_PITCH = {5.0: 2.6, 15.0: 6.1, 25.0: 8.7, 30.0: 10.0}
+
+
+def profile(vehicle, pitch_deg=None):
+    """PROFILES[vehicle], with ArduCopter at another measured forward pitch (one of
+    COPTER_SPEED_AT_PITCH): its speed, and the link's coordinated turns at it."""
+    if vehicle not in PROFILES:
+        raise ValueError("vehicle = %r: must be one of %s" % (vehicle, ", ".join(PROFILES)))
+    p = dict(PROFILES[vehicle])
+    if pitch_deg is None:
+        return p
+    if vehicle != "arducopter" or float(pitch_deg) not in COPTER_SPEED_AT_PITCH:
+        raise ValueError("pitch_deg = %r: ArduCopter only, one of %s (the pitches whose "
+                         "speed was measured)" % (pitch_deg, ", ".join(
+                             "%g" % k for k in sorted(COPTER_SPEED_AT_PITCH))))
+    p.update(pitch_deg=float(pitch_deg), speed_mps=COPTER_SPEED_AT_PITCH[float(pitch_deg)])
+    return p
+
+
+def scenario_for(vehicle, distance_m=800.0, seed=1, altitude_m=None, sets=(),
+                 pitch_deg=None):
     """The world of a rehearsal: the reference scenario (with the vehicle's preset, if
     it has one) from `distance_m`, the emitter placed at a bearing drawn from `seed`
     relative to where the seek starts, the vehicle's speed and turns as the seeker
     believes them, then `sets` (KEY=VALUE)."""
-    p = PROFILES[vehicle]
+    p = profile(vehicle, pitch_deg)
     sc = _core.scenario()
     if "preset" in p:
         sc.apply_preset(p["preset"])
@@ -189,18 +212,19 @@ def _link_settings(proc, p, speedup, tlog, declination_deg):
 def rehearse(vehicle, distance_m=800.0, strategy="adaptive", seed=1, speedup=10.0,
              wind=None, altitude_m=None, sitl_dir=None, tlog=None, self_arrival=False,
              sets=(), progress_every=0, log=None, wall_cap_s=600.0,
-             declination_deg=HOME_DECLINATION_DEG):
+             declination_deg=HOME_DECLINATION_DEG, pitch_deg=None):
     """One seek flown by the SITL firmware of `vehicle` from `distance_m`; returns the
     summary dict and the run's records (truths, states, statuses). Raises SitlError
     (one line) when the SITL cannot be started, answers not, or refuses a step; every
     process started is stopped whatever happens. declination_deg: what the link is
-    told of the home's declination (0: the seek and its fix in the compass's frame)."""
+    told of the home's declination (0: the seek and its fix in the compass's frame).
+    pitch_deg: ArduCopter's forward pitch, one of COPTER_SPEED_AT_PITCH (default 15)."""
     if not (isinstance(declination_deg, (int, float)) and -180 <= declination_deg <= 180):
         raise ValueError("declination_deg = %r: must be in [-180, 180] (deg east of true "
                          "north)" % (declination_deg,))
     log = log or (lambda text: None)
-    p = PROFILES[vehicle]
-    sc = scenario_for(vehicle, distance_m, seed, altitude_m, sets)
+    p = profile(vehicle, pitch_deg)
+    sc = scenario_for(vehicle, distance_m, seed, altitude_m, sets, pitch_deg)
     sc.self_arrival = bool(self_arrival)
     cfg = _core.simulation.seeker_for(sc, strategy)
     if sc.self_arrival and sc.bank_limit_rad > 0:
@@ -254,7 +278,8 @@ def rehearse(vehicle, distance_m=800.0, strategy="adaptive", seed=1, speedup=10.
     summary = {
         "vehicle": vehicle, "strategy": strategy, "seed": seed, "speedup": speedup,
         "distance_m": sc.initial_distance_m, "altitude_m": sc.altitude_m,
-        "wind": list(wind) if wind else None,
+        "wind": list(wind) if wind else None, "pitch_deg": p.get("pitch_deg"),
+        "speed_mps": sc.speed_mps,
         "success": bool(last["arrived"] or last.get("reached", False)),
         "capped": bool(last["capped"]),
         "distance_flown_m": last["distance_flown"], "ratio": last["distance_flown"] / straight,

@@ -218,17 +218,16 @@ class sim_autopilot(gr.basic_block):
             self._send(s)
         if st is None:
             return
+        magnetic = float(st["measured_heading"]) + self.declination  # what its compass reads
         if k % 5 == 0:
             m = _mav.message("ATTITUDE")
             m.set("time_boot_ms", now_ms)
-            magnetic = float(st["measured_heading"]) + self.declination
             m.set("yaw", math.remainder(math.pi / 2 - magnetic, 2 * math.pi))
             self._send(m)
         if k % 25 == 0:
             m = _mav.message("VFR_HUD")
             m.set("airspeed", self.airspeed)
             m.set("groundspeed", self.airspeed)
-            magnetic = float(st["measured_heading"]) + self.declination
             compass = (90.0 - math.degrees(magnetic)) % 360.0
             m.set("heading", int(compass) % 360)
             m.set("throttle", 50)

@@ -74,7 +74,8 @@ channel_source_impl::channel_source_impl(const scenario& sc,
       d_key_heading(pmt::mp("heading")),
       d_key_rx_time(pmt::mp("rx_time")),
       d_key_rx_rate(pmt::mp("rx_rate")),
-      d_key_rx_freq(pmt::mp("rx_freq"))
+      d_key_rx_freq(pmt::mp("rx_freq")),
+      d_key_world(pmt::mp("world"))
 {
     d_speedup = check_speedup(speedup);
     d_cmd_heading = d_world.heading_rad();
@@ -101,6 +102,37 @@ bool channel_source_impl::start()
                     d_realtime ? "real time" : "as fast as possible",
                     d_world.config().seed);
     return true;
+}
+
+void channel_source_impl::parked(const char* what)
+{
+    const auto now = std::chrono::steady_clock::now();
+    if (!d_parked) {
+        d_parked = true;
+        d_parked_since = now;
+        return;
+    }
+    if (d_warned_parked ||
+        std::chrono::duration<double>(now - d_parked_since).count() < PARKED_WARN_S)
+        return;
+    d_warned_parked = true;
+    const std::string w(what);
+    if (w == "cmd")
+        d_logger->warn("lockstep: slot {} has been emitted and the world waits for a "
+                       "cmd (from a seeking_controller whose cmd port is connected to "
+                       "this block's cmd) before it flies on to slot {}; nothing more "
+                       "is emitted until one comes. Without a controller, set "
+                       "lockstep=False",
+                       d_world.slot(),
+                       d_world.slot() + 1);
+    else
+        d_logger->warn("follow_truth: the world waits for the {} on the truth port "
+                       "(slot {}: {} truths kept, {} dropped so far); nothing is "
+                       "emitted until the simulator's clock passes it",
+                       w == "truth" ? "truth past the next slot's time" : "first truth",
+                       d_world.slot(),
+                       d_truth_count,
+                       d_truth_dropped);
 }
 
 void channel_source_impl::drop(const std::string& kind, const pmt::pmt_t& msg)
@@ -342,6 +374,15 @@ void channel_source_impl::begin_slot(std::uint64_t offset)
     if (!d_follow) // following, the heading comes from the autopilot (its nav)
         b = pmt::dict_add(
             b, d_key_heading, pmt::from_double(d_world.measured_heading_rad()));
+    // What a controller in the same flowgraph must be told (seeking_controller warns
+    // when it was told otherwise): the speed the vehicle believes it flies, the
+    // carrier and the slot period.
+    pmt::pmt_t w = pmt::make_dict();
+    w = pmt::dict_add(
+        w, pmt::mp("speed_mps"), pmt::from_double(sc.speed_mps + sc.airspeed_error_mps));
+    w = pmt::dict_add(w, pmt::mp("carrier_hz"), pmt::from_double(sc.carrier_hz));
+    w = pmt::dict_add(w, pmt::mp("slot_period_s"), pmt::from_double(sc.slot_period_s));
+    b = pmt::dict_add(b, d_key_world, w);
     add_item_tag(0, offset, d_key_beacon, b, alias_pmt());
     publish_state();
 }
@@ -360,8 +401,11 @@ int channel_source_impl::work(int noutput_items,
             // the truth once the simulator's clock has passed the next slot.
             vehicle_truth next;
             if (d_follow ? !truth_at(d_world.slot() + 1, next)
-                         : d_lockstep && !d_have_cmd)
+                         : d_lockstep && !d_have_cmd) {
+                parked(d_follow ? "truth" : "cmd");
                 break; // parked until the cmd (the truth) for this slot arrives
+            }
+            d_parked = false;
             d_have_cmd = false;
             if (d_end_requested) {
                 end_run_now();
@@ -392,8 +436,10 @@ int channel_source_impl::work(int noutput_items,
         }
         if (!d_started && d_follow) {
             // Slot 0 is the first truth: it places the emitter.
-            if (d_truth.empty())
+            if (d_truth.empty()) {
+                parked("first truth");
                 break;
+            }
             d_truth_t0 = d_truth.front().time_s;
             if (!d_world.following())
                 d_world.follow(d_truth.front());

@@ -64,6 +64,10 @@ private:
     bool truth_at(std::uint64_t k, vehicle_truth& out);
     void end_run_now();
     void drop(const std::string& kind, const pmt::pmt_t& msg);
+    // work() found nothing to emit until a message arrives: after PARKED_WARN_S of
+    // wall time, says once what it waits for (a flowgraph without a controller).
+    void parked(const char* what);
+    static constexpr double PARKED_WARN_S = 1.5;
     void begin_slot(std::uint64_t offset);
     void publish_state();
     void reanchor(); // d_t0 such that the world's time is due now
@@ -97,6 +101,8 @@ private:
     long long d_cmd_slot = -1; // slot of the newest command applied
     std::set<std::string> d_logged;
     std::chrono::steady_clock::time_point d_t0;
+    bool d_parked = false, d_warned_parked = false;
+    std::chrono::steady_clock::time_point d_parked_since;
 
     const pmt::pmt_t d_port_cmd;
     const pmt::pmt_t d_port_truth;
@@ -111,6 +117,7 @@ private:
     const pmt::pmt_t d_key_rx_time;
     const pmt::pmt_t d_key_rx_rate;
     const pmt::pmt_t d_key_rx_freq;
+    const pmt::pmt_t d_key_world;
 };
 
 } // namespace rfseek

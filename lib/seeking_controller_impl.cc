@@ -98,6 +98,36 @@ void seeking_controller_impl::handle_nav(const pmt::pmt_t& msg)
     d_have_nav = true;
 }
 
+void seeking_controller_impl::check_world(const pmt::pmt_t& world)
+{
+    d_world_checked = true;
+    const seeker_config& c = d_seeker->config();
+    const struct {
+        const char* key;
+        double told;
+        const char* unit;
+    } fields[] = { { "speed_mps", c.speed_mps, "m/s" },
+                   { "carrier_hz", c.carrier_hz, "Hz" },
+                   { "slot_period_s", c.slot_period_s, "s" } };
+    for (const auto& f : fields) {
+        const pmt::pmt_t v = pmt::dict_ref(world, pmt::mp(f.key), pmt::PMT_NIL);
+        if (!number(v))
+            continue;
+        const double world_value = as_double(v);
+        if (!std::isfinite(world_value) ||
+            std::abs(world_value - f.told) <= 1e-6 * std::abs(world_value))
+            continue;
+        d_logger->warn("{}: the world in this flowgraph (channel_source) has {:g} {} but "
+                       "this controller was told {:g} {}; the seek is steered by what "
+                       "the controller was told. Set both from one variable",
+                       f.key,
+                       world_value,
+                       f.unit,
+                       f.told,
+                       f.unit);
+    }
+}
+
 void seeking_controller_impl::handle_meas(const pmt::pmt_t& msg)
 {
     gr::thread::scoped_lock lock(d_setlock);
@@ -121,6 +151,11 @@ void seeking_controller_impl::handle_meas(const pmt::pmt_t& msg)
     if (!(pmt::is_uint64(slot) || (pmt::is_integer(slot) && pmt::to_long(slot) >= 0))) {
         drop("meas", "no non-negative integer 'slot'", msg);
         return;
+    }
+    if (!d_world_checked) {
+        const pmt::pmt_t w = pmt::dict_ref(msg, pmt::mp("world"), pmt::PMT_NIL);
+        if (pmt::is_dict(w) && !pmt::is_null(w))
+            check_world(w);
     }
     measurement m;
     m.slot = pmt::is_uint64(slot) ? pmt::to_uint64(slot)

@@ -42,6 +42,10 @@ private:
     void handle_meas(const pmt::pmt_t& msg);
     void handle_nav(const pmt::pmt_t& msg);
     void drop(const std::string& port, const std::string& kind, const pmt::pmt_t& msg);
+    // A meas forwarded from channel_source's beacon tag carries the world's "world"
+    // dict: warns once for each of speed, carrier and slot period told otherwise.
+    void check_world(const pmt::pmt_t& world);
+    bool d_world_checked = false;
 
     std::unique_ptr<seeker> d_seeker;
     bool d_have_nav = false;

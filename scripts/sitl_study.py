@@ -10,11 +10,12 @@ the module installed):
 
     /usr/bin/python3 scripts/sitl_study.py --vehicle arducopter --distance 1000 \\
         --seeds 1-5 [--strategy adaptive] [--speedup 10] [--wind-from DEG,M_S] [--sitl DIR]
-        [--arrival self] [--declination DEG] [--wind-speed M_S] [--pitch DEG]
+        [--arrival self] [--declination DEG] [--wind-speed M_S] [--pitch DEG] [--forecast]
 
 With --wind-speed the SITL wind blows at that speed from a direction drawn from each
 seed (or --wind-from's), and the simulated column flies the same mean wind; both
-ratios are then the track over the ground.
+ratios are then the track over the ground. With --forecast the seeker (SITL and
+simulated alike) is handed that wind as its forecast, as rfseek-live --wind-from does.
 
 Prints one line per seed (arrived, ratio, flight time, wall time, lowest and highest
 height; with --arrival self where it declared and the fix's error against the true
@@ -56,11 +57,15 @@ def main(argv):
                    help="ArduCopter's forward pitch (deg; 5, 15, 25 or 30; default 15)")
     p.add_argument("--wind-speed", type=float, default=None,
                    help="wind of this speed (m/s) from a direction drawn from the seed")
+    p.add_argument("--forecast", action="store_true",
+                   help="hand the seeker the wind as its forecast (exact)")
     p.add_argument("--sitl", default=None)
     p.add_argument("--arrival", default="oracle", choices=("oracle", "self"))
     p.add_argument("--declination", type=float, default=None,
                    help="told to the link (default: the home's)")
     a = p.parse_args(argv)
+    if a.forecast and a.wind_from is None and a.wind_speed is None:
+        p.error("--forecast: give the wind (--wind-speed or --wind-from)")
     from gnuradio import rfseek
     from gnuradio.rfseek import sitl_rehearsal
     rows = []
@@ -72,7 +77,8 @@ def main(argv):
         s, _ = sitl_rehearsal.rehearse(a.vehicle, a.distance, a.strategy, seed, a.speedup,
                                        wind_, sitl_dir=a.sitl,
                                        self_arrival=a.arrival == "self",
-                                       pitch_deg=a.pitch, **kw)
+                                       pitch_deg=a.pitch,
+                                       forecast="sitl" if a.forecast else None, **kw)
         # The simulation of the same scenario: the SITL's scene was turned from the
         # scenario's start heading to the hand-over's; its wind is turned back for the
         # simulation, so that both fly the same geometry in the same wind.
@@ -82,6 +88,7 @@ def main(argv):
             sc.wind_speed_mps = wind_[0]
             sc.wind_to_rad = math.remainder(math.radians(90.0 - (wind_[1] + 180.0)) - turn,
                                             2 * math.pi)
+            sc.wind_forecast = a.forecast
         sim = rfseek.simulation(sc, rfseek.simulation.seeker_for(sc, a.strategy)).run(True)
         # The SITL's ratio is the true track over the ground (in wind too): so is the
         # simulation's, from its positions (its own ratio is through the air).
@@ -93,7 +100,7 @@ def main(argv):
         rows.append((s, sim, sim_ratio))
         arr = s.get("arrival", {})
         print("seed %3d  %s  ratio %.3f (simulated %.3f)  flight %6.1f s  wall %5.1f s  "
-              "height %.1f-%.1f m  compass %.1f deg east%s%s" % (
+              "height %.1f-%.1f m  compass %.1f deg east%s%s%s" % (
                   seed, "arrived" if s["success"] else "FAILED ", s["ratio"],
                   sim_ratio, s["time_s"], s["wall_s"],
                   s["height_min_m"], s["height_max_m"], s["compass_declination_deg"] or 0.0,
@@ -102,7 +109,8 @@ def main(argv):
                       "%.1f m (in ellipse: %s)" % (arr["location_error_m"],
                                                    arr["location_in_ellipse"])
                       if arr.get("located") else "none")) if arr else "",
-                  "  wind %.1f m/s from %.0f deg" % wind_ if wind_ else ""), flush=True)
+                  "  wind %.1f m/s from %.0f deg" % wind_ if wind_ else "",
+                  " (forecast)" if a.forecast else ""), flush=True)
     ok = [(s, r) for s, sim, r in rows if s["success"] and sim.summary.success]
     arrived = sum(s["success"] for s, _, _ in rows)
     diffs = [s["ratio"] - r for s, r in ok]

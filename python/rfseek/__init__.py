@@ -17,6 +17,8 @@ from .rfseek_python import *  # noqa: F401,F403
 from ._version import __version__  # noqa: F401
 
 import math as _math
+import sys as _sys
+import types as _types
 
 # The Python blocks, importable from the package as the README lists them. As in
 # gr_modtool's modules, rfseek.vehicle_bridge and rfseek.seek_view are then the blocks,
@@ -24,18 +26,46 @@ import math as _math
 # helpers with `from gnuradio.rfseek.vehicle_bridge import parse_nav` (`import
 # gnuradio.rfseek.vehicle_bridge as m` gives the block). rfseek.sigmf stays the module.
 from .vehicle_bridge import loopback_vehicle, vehicle_bridge  # noqa: E402,F401
-from .sigmf import replay_source, sigmf_recorder  # noqa: E402,F401
 from .autopilot_link import autopilot_link  # noqa: E402,F401
 from .sim_autopilot import sim_autopilot  # noqa: E402,F401
-from .pulsed_beacon import pulsed_beacon  # noqa: E402,F401
 from .meas_streams import meas_streams  # noqa: E402,F401
-from .radios import (RADIOS, radio_for, radio_rx_chain, radio_source,  # noqa: E402,F401
-                     rx_plan, sim_radio)
 
-try:
-    from .seek_view import seek_view  # noqa: E402,F401
-except Exception:  # no (or a broken) Qt or matplotlib: every other block works
-    pass
+
+#: Imported when first used, not with the module (`rfseek.seek_view` works as before):
+#: seek_view's Qt and matplotlib, and the blocks built of GNU Radio's analog, filter and
+#: channels blocks. A headless companion computer never loads a GUI toolkit, and
+#: `from gnuradio import rfseek` stays fast (docs/benchmarks.md "Import time").
+_LAZY = {"seek_view": "seek_view", "replay_source": "sigmf", "sigmf_recorder": "sigmf",
+         "pulsed_beacon": "pulsed_beacon", "RADIOS": "radios", "radio_for": "radios",
+         "radio_rx_chain": "radios", "radio_source": "radios", "rx_plan": "radios",
+         "sim_radio": "radios"}
+
+
+def __getattr__(name):
+    if name in _LAZY:
+        import importlib
+        value = getattr(importlib.import_module("." + _LAZY[name], __name__), name)
+        globals()[name] = value
+        return value
+    raise AttributeError("module %r has no attribute %r" % (__name__, name))
+
+
+def __dir__():
+    return sorted(set(globals()) | set(_LAZY))
+
+
+class _package(_types.ModuleType):
+    """This package's module type: importing a submodule that shares its block's name
+    (gnuradio.rfseek.seek_view, .pulsed_beacon) makes Python set the package's
+    attribute to the submodule; the block's name must stay the block."""
+
+    def __setattr__(self, name, value):
+        if _LAZY.get(name) == name and isinstance(value, _types.ModuleType):
+            value = getattr(value, name)
+        super().__setattr__(name, value)
+
+
+_sys.modules[__name__].__class__ = _package
 
 
 def _fields(obj):

@@ -7,6 +7,8 @@
 malformed commands, termination at d_v, and parameter errors as ValueError."""
 
 import math
+import subprocess
+import sys
 import threading
 import time
 
@@ -244,6 +246,72 @@ class qa_channel_source(gr_unittest.TestCase):
         self.assertTrue(src.realtime())
         self.assertEqual(src.mode(), "burst")
 
+    def test_lockstep_without_a_controller_says_what_it_waits_for(self):
+        # The first flowgraph a user builds: source -> estimator -> message_debug with
+        # the defaults (lockstep). The world waits for a cmd that never comes; within
+        # 2 s it must say so, once, and what would end the wait. In a process of its
+        # own: GNU Radio's logger writes to that process's console.
+        script = "\n".join([
+            "import time",
+            "from gnuradio import blocks, gr, rfseek",
+            "tb = gr.top_block()",
+            "sc = rfseek.scenario()",
+            "src = rfseek.channel_source(sc)",
+            "est = rfseek.doppler_estimator(sc.samp_rate_hz, sc.window_len, sc.fft_len)",
+            "dbg = blocks.message_debug()",
+            "tb.connect(src, est)",
+            "tb.msg_connect(est, 'meas', dbg, 'store')",
+            "tb.start()",
+            "time.sleep(4.0)",
+            "print('measurements', dbg.num_messages(), flush=True)",
+            "tb.stop()",
+            "tb.wait()"])
+        run = subprocess.run([sys.executable, "-c", script], stdout=subprocess.PIPE,
+                             stderr=subprocess.STDOUT, text=True, timeout=120)
+        self.assertEqual(run.returncode, 0, run.stdout)
+        warnings = [l for l in run.stdout.splitlines() if "waits for a cmd" in l]
+        self.assertEqual(len(warnings), 1, run.stdout)
+        self.assertIn("lockstep=False", warnings[0])
+        self.assertIn("measurements 1", run.stdout)  # slot 0 only: it did wait
+
+    def test_a_closed_loop_does_not_warn_of_waiting(self):
+        # In lockstep with a controller every wait is short: the timer starts again at
+        # every slot, so a whole flight (thousands of short waits) says nothing.
+        script = "\n".join([
+            "from gnuradio import rfseek",
+            "from gnuradio.rfseek.flowgraphs import closed_loop",
+            "sc = rfseek.scenario(seed=3, initial_distance_m=600.0)",
+            "tb = closed_loop(sc, 'adaptive')",
+            "tb.run()",
+            "print('slots', tb.collector.states[-1]['slot'], flush=True)"])
+        run = subprocess.run([sys.executable, "-c", script], stdout=subprocess.PIPE,
+                             stderr=subprocess.STDOUT, text=True, timeout=300)
+        self.assertEqual(run.returncode, 0, run.stdout)
+        self.assertGreater(int(run.stdout.split()[-1]), 500)  # "slots N"
+        self.assertNotIn("waits for", run.stdout)
+        self.assertNotIn("controller was told", run.stdout)  # one scenario for both
+
+    def test_a_controller_told_another_world_warns_once_per_quantity(self):
+        # A world at 25 m/s on 2.4 GHz, a controller told 10 m/s and 2.0 GHz: each
+        # quantity is named once, with both values; the slot period agrees, unnamed.
+        script = "\n".join([
+            "from gnuradio import rfseek",
+            "from gnuradio.rfseek.flowgraphs import closed_loop",
+            "sc = rfseek.scenario(seed=3, initial_distance_m=600.0, speed_mps=25.0,",
+            "                     carrier_hz=2.4e9)",
+            "cfg = rfseek.simulation.seeker_for(sc, 'adaptive')",
+            "cfg.speed_mps, cfg.carrier_hz = 10.0, 2.0e9",
+            "tb = closed_loop(sc, cfg)",
+            "tb.run()"])
+        run = subprocess.run([sys.executable, "-c", script], stdout=subprocess.PIPE,
+                             stderr=subprocess.STDOUT, text=True, timeout=300)
+        self.assertEqual(run.returncode, 0, run.stdout)
+        told = [l for l in run.stdout.splitlines() if "controller was told" in l]
+        self.assertEqual(len(told), 2, run.stdout)
+        self.assertIn("speed_mps", told[0] + told[1])
+        self.assertIn("has 25 m/s but this controller was told 10 m/s", run.stdout)
+        self.assertIn("has 2.4e+09 Hz but this controller was told 2e+09 Hz", run.stdout)
+        self.assertNotIn("slot_period_s:", run.stdout)
 
 if __name__ == "__main__":
     gr_unittest.run(qa_channel_source)

@@ -137,6 +137,15 @@ class qa_sigmf(gr_unittest.TestCase):
                                  (0.0, 2.4e9, "samp_rate")):
             with self.assertRaisesRegex(ValueError, word):
                 sigmf.sigmf_recorder(base + "_rec", rate, freq)
+        # A directory that does not exist is refused, not created: a typo in the path
+        # would otherwise record somewhere unexpected.
+        missing = os.path.join(os.path.dirname(base), "no_such_dir", "rec")
+        with self.assertRaisesRegex(ValueError, "base.*no_such_dir.*does not exist"):
+            sigmf.sigmf_recorder(missing, 1e5, 2.4e9)
+        self.assertFalse(os.path.exists(os.path.dirname(missing)))
+        for bad in ("", os.path.dirname(base) + os.sep, None):
+            with self.assertRaisesRegex(ValueError, "base"):
+                sigmf.sigmf_recorder(bad, 1e5, 2.4e9)
 
 
 if __name__ == "__main__":

@@ -11,6 +11,7 @@ with every process it started stopped. Runs whenever SITL builds are found (--si
 $RFSEEK_SITL, or ../shared/sitl beside the source tree); otherwise each test says it is
 skipped and why."""
 
+import math
 import os
 import shutil
 import socket
@@ -87,6 +88,29 @@ class qa_sitl_profiles(gr_unittest.TestCase):
         with self.assertRaises(ValueError) as cm:
             sitl_rehearsal.profile("glider")
         self.assertIn("vehicle", str(cm.exception))
+
+    def test_the_forecast_is_the_wind_the_simulation_hands_over(self):
+        # A wind from a compass direction (SITL's SIM_WIND_DIR, weather reports) is the
+        # forecast the simulation hands its seeker for the same wind (--set
+        # wind_forecast=true), whose direction is counter-clockwise from east, toward.
+        for speed, frm in ((5.0, 0.0), (5.0, 90.0), (3.0, 225.0), (4.0, 301.0)):
+            sc = sitl_rehearsal.scenario_for("arducopter", 1000.0, 1, pitch_deg=30.0)
+            sc.wind_speed_mps = speed
+            sc.wind_to_rad = math.remainder(math.radians(90.0 - (frm + 180.0)), 2 * math.pi)
+            sc.wind_forecast = True
+            cfg = rfseek.simulation.seeker_for(sc, "adaptive")
+            east, north = sitl_rehearsal.forecast_vector((speed, frm))
+            self.assertAlmostEqual(east, cfg.wind_forecast_east_mps, places=9)
+            self.assertAlmostEqual(north, cfg.wind_forecast_north_mps, places=9)
+        # From the north blows toward the south.
+        east, north = sitl_rehearsal.forecast_vector((5.0, 0.0))
+        self.assertAlmostEqual(east, 0.0)
+        self.assertAlmostEqual(north, -5.0)
+        self.assertEqual(sitl_rehearsal.forecast_vector(None), (0.0, 0.0))
+        for bad in ((-1.0, 0.0), (float("nan"), 10.0), (5.0, float("inf"))):
+            with self.assertRaises(ValueError) as cm:
+                sitl_rehearsal.forecast_vector(bad)
+            self.assertIn("forecast", str(cm.exception))
 
 
 @unittest.skipIf(SITL is None, WHY)

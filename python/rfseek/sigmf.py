@@ -50,8 +50,15 @@ class sigmf_recorder(gr.sync_block):
         self.estimator = estimator or {}
         self.annotations = []
         self._written = 0
+        if not isinstance(base, str) or not base or base.endswith(os.sep):
+            raise ValueError("sigmf_recorder: base = %r: must be a path and file name "
+                             "without extension (BASE.sigmf-data, BASE.sigmf-meta)"
+                             % (base,))
         d = os.path.dirname(os.path.abspath(base))
-        os.makedirs(d, exist_ok=True)
+        if not os.path.isdir(d):
+            # Never created here: a typo in the path would record somewhere unexpected.
+            raise ValueError("sigmf_recorder: base = %r: the directory %s does not exist; "
+                             "create it first" % (base, d))
         self._data = open(base + ".sigmf-data", "wb")
         self.message_port_register_in(pmt.intern("nav"))
         self.set_msg_handler(pmt.intern("nav"), self.on_nav)

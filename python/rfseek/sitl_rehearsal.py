@@ -194,6 +194,19 @@ def scenario_for(vehicle, distance_m=800.0, seed=1, altitude_m=None, sets=(),
     return sc
 
 
+def forecast_vector(wind):
+    """A wind given as (speed m/s, compass direction it blows from in deg, true) as the
+    seeker's forecast: (toward east, toward north) in m/s. None: no wind, (0, 0)."""
+    if wind is None:
+        return 0.0, 0.0
+    speed, frm = (float(v) for v in wind)
+    if not (math.isfinite(speed) and math.isfinite(frm) and speed >= 0.0):
+        raise ValueError("forecast = %r: must be (speed >= 0 m/s, from in deg), finite"
+                         % (wind,))
+    toward = math.radians(frm + 180.0)  # compass: clockwise from north
+    return speed * math.sin(toward), speed * math.cos(toward)
+
+
 def _link_settings(proc, p, speedup, tlog, declination_deg):
     """autopilot_link's settings for a vehicle of profile p behind the SITL proc."""
     link = {"link": proc.link, "family": proc.spec["family"], "time_scale": speedup,
@@ -212,13 +225,17 @@ def _link_settings(proc, p, speedup, tlog, declination_deg):
 def rehearse(vehicle, distance_m=800.0, strategy="adaptive", seed=1, speedup=10.0,
              wind=None, altitude_m=None, sitl_dir=None, tlog=None, self_arrival=False,
              sets=(), progress_every=0, log=None, wall_cap_s=600.0,
-             declination_deg=HOME_DECLINATION_DEG, pitch_deg=None):
+             declination_deg=HOME_DECLINATION_DEG, pitch_deg=None, forecast=None):
     """One seek flown by the SITL firmware of `vehicle` from `distance_m`; returns the
     summary dict and the run's records (truths, states, statuses). Raises SitlError
     (one line) when the SITL cannot be started, answers not, or refuses a step; every
     process started is stopped whatever happens. declination_deg: what the link is
     told of the home's declination (0: the seek and its fix in the compass's frame).
-    pitch_deg: ArduCopter's forward pitch, one of COPTER_SPEED_AT_PITCH (default 15)."""
+    pitch_deg: ArduCopter's forward pitch, one of COPTER_SPEED_AT_PITCH (default 15).
+    wind: the SITL's wind, (speed m/s, compass direction it blows from in deg).
+    forecast: the wind as the operator knows it, handed to the seeker (`adaptive`'s
+    wind forecast, as rfseek-live --wind-from): "sitl" for the SITL's own wind, or
+    (speed, from) like `wind`; None (default): the seeker learns the wind alone."""
     if not (isinstance(declination_deg, (int, float)) and -180 <= declination_deg <= 180):
         raise ValueError("declination_deg = %r: must be in [-180, 180] (deg east of true "
                          "north)" % (declination_deg,))
@@ -227,6 +244,9 @@ def rehearse(vehicle, distance_m=800.0, strategy="adaptive", seed=1, speedup=10.
     sc = scenario_for(vehicle, distance_m, seed, altitude_m, sets, pitch_deg)
     sc.self_arrival = bool(self_arrival)
     cfg = _core.simulation.seeker_for(sc, strategy)
+    if forecast is not None:
+        cfg.wind_forecast_east_mps, cfg.wind_forecast_north_mps = forecast_vector(
+            wind if forecast == "sitl" else forecast)
     if sc.self_arrival and sc.bank_limit_rad > 0:
         # The loiter over the emitter must be an orbit the vehicle can fly: 20 % wider
         # than its tightest turn at the profile's bank (a plane's is about 93 m).
@@ -278,7 +298,9 @@ def rehearse(vehicle, distance_m=800.0, strategy="adaptive", seed=1, speedup=10.
     summary = {
         "vehicle": vehicle, "strategy": strategy, "seed": seed, "speedup": speedup,
         "distance_m": sc.initial_distance_m, "altitude_m": sc.altitude_m,
-        "wind": list(wind) if wind else None, "pitch_deg": p.get("pitch_deg"),
+        "wind": list(wind) if wind else None,
+        "forecast": [cfg.wind_forecast_east_mps, cfg.wind_forecast_north_mps]
+        if forecast is not None else None, "pitch_deg": p.get("pitch_deg"),
         "speed_mps": sc.speed_mps,
         "success": bool(last["arrived"] or last.get("reached", False)),
         "capped": bool(last["capped"]),

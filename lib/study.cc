@@ -66,11 +66,23 @@ void study_point::apply(const std::string& key, const std::string& value)
         d_est.min_freq_hz = number(key, value);
     else if (key == "max_freq_hz")
         d_est.max_freq_hz = number(key, value);
-    else
-        throw std::invalid_argument("unknown parameter '" + key +
-                                    "' (a scenario field, a seeker constant or an "
-                                    "estimator setting: interpolator, window, "
-                                    "min_freq_hz, max_freq_hz)");
+    else {
+        // Every key taken, by kind: a typo's neighbour is then in the message.
+        auto join = [](const std::vector<std::string>& v, const auto& keep) {
+            std::string out;
+            for (const auto& k : v)
+                if (keep(k))
+                    out += (out.empty() ? "" : ", ") + k;
+            return out;
+        };
+        const auto scen = scenario::keys();
+        throw std::invalid_argument(
+            "unknown parameter '" + key + "'. Scenario fields: " +
+            join(scen, [](const std::string&) { return true; }) + ". Seeker constants: " +
+            join(seeker_config::keys(),
+                 [&](const std::string& k) { return !contains(scen, k); }) +
+            ". Estimator settings: interpolator, window, min_freq_hz, max_freq_hz");
+    }
 }
 
 void study_point::validate(const std::vector<std::string>& strategies) const

@@ -134,6 +134,31 @@ def scenario_from(**fields):
     return sc
 
 
+def split_sets(sets):
+    """Command-line --set items ("KEY=VALUE") as (scenario items, seeker items): a key
+    of both (speed_mps, self_arrival, ...) is the scenario's, which seeker_for copies
+    into the seeker configuration. ValueError for a malformed item, and for an unknown
+    key, listing every key taken."""
+    if isinstance(sets, (str, bytes)) or not hasattr(sets, "__iter__"):
+        raise ValueError("sets: a list of 'KEY=VALUE' strings, got %r" % (sets,))
+    scen_keys = list(scenario.keys())
+    seek_keys = [k for k in seeker_config.keys() if k not in set(scen_keys)]
+    scen, seek = [], []
+    for kv in sets:
+        key, sep, _ = kv.partition("=")
+        if not sep:
+            raise ValueError("--set expects KEY=VALUE, got '%s'" % kv)
+        key = key.strip()
+        if key in scen_keys:
+            scen.append(kv)
+        elif key in seek_keys:
+            seek.append(kv)
+        else:
+            raise ValueError("--set %s: unknown key. Scenario fields: %s. Seeker constants: "
+                             "%s" % (key, ", ".join(scen_keys), ", ".join(seek_keys)))
+    return scen, seek
+
+
 def apply_sets(sc, sets):
     """Apply "KEY=VALUE" strings (command-line --set options) to a scenario; ValueError
     names a malformed item or a bad field."""

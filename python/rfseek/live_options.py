@@ -57,7 +57,8 @@ def split_sets(args, rfseek):
             raise ValueError("--set %s: a field of the simulated world, only with --source "
                              "sim" % key)
         else:
-            raise ValueError("--set %s: unknown: neither a seeker constant "
-                             "(rfseek.seeker_config.keys()) nor a scenario field "
-                             "(rfseek.scenario.keys(), with --source sim)" % key)
+            raise ValueError("--set %s: unknown key. Seeker constants: %s. Scenario "
+                             "fields (with --source sim): %s" % (
+                                 key, ", ".join(sorted(seek_keys - scen_keys)),
+                                 ", ".join(rfseek.scenario.keys())))
     return scen, seek

@@ -73,6 +73,15 @@ class qa_live(gr_unittest.TestCase):
         self.assertGreater(int(m.group(1)), 100)
         flown = float(re.search(r"arrived, (\d+) m flown", p.stderr).group(1))
         self.assertLess(flown, 1.25 * 600)  # shortest path 800 - 200 m
+        # The progress line gives the flight's time (the sample clock, 20 x the wall
+        # clock's pace here) and compass bearings in [0, 360).
+        lines = re.findall(r"flight +([\d.]+) s +\(wall +([\d.]+) s\).*heading (\d+\.\d) deg",
+                           p.stderr)
+        self.assertGreater(len(lines), 3, p.stderr)
+        flight, wall, _ = (float(v) for v in lines[-1])
+        self.assertGreater(flight, 2.0 * wall)
+        for _, _, heading in lines:
+            self.assertTrue(0.0 <= float(heading) < 360.0, heading)
 
     def test_speedup_out_of_range_is_a_value_error(self):
         from gnuradio import rfseek

@@ -38,6 +38,20 @@ class qa_scenario(gr_unittest.TestCase):
         self.assertAlmostEqual(sc.max_doppler_hz, 10 * 2e9 / rfseek.SPEED_OF_LIGHT)
         self.assertEqual(set(json.loads(sc.to_json()).keys()), set(rfseek.scenario.keys()))
 
+    def test_split_sets_sorts_keys_and_lists_them_all_when_unknown(self):
+        scen, seek = rfseek.split_sets(["snr_db=-3", "adaptive_gain=0.7", "speed_mps=12"])
+        self.assertEqual(scen, ["snr_db=-3", "speed_mps=12"])  # shared keys: the scenario's
+        self.assertEqual(seek, ["adaptive_gain=0.7"])
+        with self.assertRaises(ValueError) as cm:
+            rfseek.split_sets(["adaptive_gian=0.7"])
+        text = str(cm.exception)
+        self.assertIn("adaptive_gian", text)
+        for key in list(rfseek.scenario.keys()) + list(rfseek.seeker_config.keys()):
+            self.assertIn(key, text)
+        for bad in (["snr_db"], "snr_db=1"):
+            with self.assertRaises(ValueError):
+                rfseek.split_sets(bad)
+
     def test_value_error_names_field(self):
         for key, bad in (("initial_distance_m", -1.0), ("fft_len", 2), ("gamma_max", 2.0),
                          ("samp_rate_hz", 0.0), ("cfo_hz", 1e6)):

@@ -14,6 +14,11 @@ from . import rfseek_python as _core
 from .sitl import SitlError, _ACK_RESULTS, mav_client
 
 
+#: The plane is handed over once its airspeed has varied by at most SETTLED_MPS over
+#: SETTLED_S s of the autopilot's clock.
+SETTLED_MPS, SETTLED_S = 0.5, 3.0
+
+
 class pilot:
     """What a ground station and its pilot do before the seek: take off without GPS,
     climb to `altitude_m` above home, and hand the vehicle over to the link in its
@@ -152,6 +157,7 @@ class pilot:
                         action=lambda: self._rc(2000), sim_timeout_s=240.0)
             self._set_mode("GUIDED")
             self._release_rc()
+            self._settle_plane()
         else:
             hold = lambda: self._attitude_target(0.75)
             # PX4 enters OFFBOARD only once a setpoint stream runs: stream for 1 s first.
@@ -171,6 +177,32 @@ class pilot:
             self._hover_thread.start()
         self.log("at %.1f m, handed over in %s at %.1f s" % (
             self.height() or 0.0, self.proc.spec["mode"], self._clock()))
+
+    def _settle_plane(self):
+        """Out of its full-throttle climb the plane is some 8 m/s over its cruise, and
+        in GUIDED alone it would circle. Hand it over as a pilot would, from steady
+        cruise: hold the heading it has until its airspeed has settled (within
+        SETTLED_MPS over SETTLED_S of the autopilot's clock)."""
+        hud = self.client.last.get("VFR_HUD")
+        heading = float(hud.get("heading")) if hud is not None else 0.0
+        self.client.send("COMMAND_INT", target_system=1, target_component=1, frame=0,
+                         command=43002, param1=1.0, param2=heading, param3=6.0)
+        speeds = []
+
+        def settled():
+            v = self.client.last.get("VFR_HUD")
+            if v is None or self._clock() is None:
+                return False
+            speeds.append((self._clock(), float(v.get("airspeed"))))
+            while speeds and speeds[0][0] < speeds[-1][0] - SETTLED_S:
+                speeds.pop(0)
+            recent = [a for _, a in speeds]
+            return (speeds[-1][0] - speeds[0][0] >= 0.9 * SETTLED_S
+                    and max(recent) - min(recent) <= SETTLED_MPS)
+
+        t0 = self._clock()
+        self._until("settling to cruise", settled, sim_timeout_s=90.0)
+        self.log("at cruise, %.1f m/s, after %.1f s" % (speeds[-1][1], self._clock() - t0))
 
     def _hover(self):
         while self._hovering and self.proc.alive():

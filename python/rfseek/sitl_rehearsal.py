@@ -241,9 +241,14 @@ def rehearse(vehicle, distance_m=800.0, strategy="adaptive", seed=1, speedup=10.
                          "north)" % (declination_deg,))
     log = log or (lambda text: None)
     p = profile(vehicle, pitch_deg)
-    sc = scenario_for(vehicle, distance_m, seed, altitude_m, sets, pitch_deg)
+    from . import split_sets
+    scenario_sets, seeker_sets = split_sets(sets)
+    sc = scenario_for(vehicle, distance_m, seed, altitude_m, scenario_sets, pitch_deg)
     sc.self_arrival = bool(self_arrival)
     cfg = _core.simulation.seeker_for(sc, strategy)
+    for kv in seeker_sets:
+        key, _, value = kv.partition("=")
+        cfg.set(key.strip(), value.strip())
     if forecast is not None:
         cfg.wind_forecast_east_mps, cfg.wind_forecast_north_mps = forecast_vector(
             wind if forecast == "sitl" else forecast)

@@ -3,7 +3,9 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
 #
 """rfseek-live's checks of what it is asked before any device is opened: radio settings
-that a source would ignore, and where each --set KEY=VALUE goes."""
+that a source would ignore, and where each --set KEY=VALUE goes; and its progress line."""
+
+import math
 
 
 def refuse_unused(args, serving=False):
@@ -62,3 +64,20 @@ def split_sets(args, rfseek):
                                  key, ", ".join(sorted(seek_keys - scen_keys)),
                                  ", ".join(rfseek.scenario.keys())))
     return scen, seek
+
+
+def compass_deg(rad):
+    """The module's angle (counter-clockwise from east, rad) as a compass bearing,
+    clockwise from north, in [0, 360) deg, as ground stations and autopilots give it."""
+    return (90.0 - math.degrees(rad)) % 360.0
+
+
+def progress_line(meas, telemetry, windows, wall_s):
+    """One line of progress: the flight's time (the sample clock's, which a --speedup
+    runs faster than the wall clock), the windows, the latest measurement and the
+    commanded heading as a compass bearing."""
+    return ("  flight %7.1f s  (wall %6.1f s)  %5d windows  f %9.2f Hz  snr %6.1f dB  "
+            "stage %d  heading %05.1f deg%s" % (
+                meas.get("time", 0.0), wall_s, windows, meas["freq_hz"], meas["snr_db"],
+                telemetry["stage"], compass_deg(telemetry["heading"]),
+                "" if meas["valid"] else "  (invalid)"))

@@ -1,0 +1,82 @@
+#!/usr/bin/python3
+#
+# Copyright 2026 gr-rfseek authors.
+# SPDX-License-Identifier: GPL-3.0-or-later
+#
+"""A man page (section 1) from a program's own --help, at build time, so that the two
+never disagree: NAME with the program's one-line summary, then the help text as it
+prints (options, defaults, examples), then where the documentation is installed.
+
+  make_manpage.py NAME VERSION OUTPUT -- COMMAND [ARGS...]
+
+COMMAND --help is run (its stdout, or stderr if stdout is empty); a non-zero exit or an
+empty help is an error (exit 1), so a broken program fails the build, not the page.
+"""
+
+import re
+import subprocess
+import sys
+
+
+def roff_escape(line):
+    """A line of help text as literal roff: backslashes doubled, and a leading dot or
+    quote (a roff request) escaped."""
+    line = line.replace("\\", "\\e")
+    if line.startswith((".", "'")):
+        line = "\\&" + line
+    return line
+
+
+def summary(name, text):
+    """The program's one-line summary: the first sentence of the description (the text
+    after the usage block), or a generic one."""
+    lines = text.splitlines()
+    i = 0
+    if lines and lines[0].lower().startswith("usage:"):
+        while i < len(lines) and lines[i].strip():  # the usage block
+            i += 1
+    for line in lines[i:]:
+        line = line.strip()
+        if line and not line.lower().startswith("usage"):
+            line = re.sub(r"^%s:\s*" % re.escape(name), "", line)
+            return line.split(". ")[0].rstrip(".:")
+    return "a program of gr-rfseek"
+
+
+def page(name, version, text):
+    # The program may print its own path as argv[0]: the page names it.
+    text = re.sub(r"(?m)(usage:\s*)\S*%s\b" % re.escape(name), r"\g<1>%s" % name, text)
+    out = [".TH %s 1 \"\" \"gr-rfseek %s\" \"User Commands\"" % (name.upper(), version),
+           ".SH NAME", "%s \\- %s" % (name, roff_escape(summary(name, text))),
+           ".SH DESCRIPTION", ".nf"]
+    out += [roff_escape(line) for line in text.rstrip("\n").splitlines()]
+    out += [".fi", ".SH SEE ALSO",
+            "The gr-rfseek user guide, installed in share/doc/gr-rfseek (README.md and "
+            "docs/index.md)."]
+    return "\n".join(out) + "\n"
+
+
+def main(argv):
+    if len(argv) < 5 or argv[3] != "--":
+        print(__doc__, file=sys.stderr)
+        return 2
+    name, version, output, command = argv[0], argv[1], argv[2], argv[4:]
+    try:
+        p = subprocess.run(command + ["--help"], stdout=subprocess.PIPE,
+                           stderr=subprocess.PIPE, text=True, timeout=120)
+    except (OSError, subprocess.TimeoutExpired) as e:
+        print("make_manpage: %s --help: %s" % (name, e), file=sys.stderr)
+        return 1
+    text = p.stdout if p.stdout.strip() else p.stderr
+    if p.returncode != 0 or not text.strip():
+        print("make_manpage: %s --help exited %d: %s" % (name, p.returncode,
+                                                         p.stderr.strip()[-300:]),
+              file=sys.stderr)
+        return 1
+    with open(output, "w", encoding="utf-8") as f:
+        f.write(page(name, version, text))
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv[1:]))

@@ -11,7 +11,7 @@
   #fragment, to a heading of that file (GitHub's anchors: lower case, punctuation
   dropped, spaces to hyphens); and the same link resolves in the installed docs, whose
   layout is read from the top-level CMakeLists.txt's install() rules into
-  ${CMAKE_INSTALL_DOCDIR} (README.md and every page under docs/ must be installed);
+  ${CMAKE_INSTALL_DOCDIR} (README.md and every page under docs/, notes included, must be installed);
 - block lists: every GRC block (grc/*.block.yml, its id without the `rfseek_` prefix)
   has a heading in docs/blocks.md and is named, as `name`, in README.md and MANIFEST.md.
 
@@ -28,6 +28,8 @@ import sys
 README_MAX_LINES = 150
 PAGE_MAX_LINES = 400
 DOCDIR = "${CMAKE_INSTALL_DOCDIR}"
+# Checked in the source tree; they need not be installed.
+NOT_INSTALLED = ("MANIFEST.md", "CHANGELOG.md")
 
 LINK = re.compile(r"(?<!!)\[[^\]]*\]\(([^)\s]+)\)|!\[[^\]]*\]\(([^)\s]+)\)")
 HEADING = re.compile(r"^#{1,6}\s+(.*?)\s*#*\s*$")
@@ -164,7 +166,7 @@ def check_installed_target(rel, file_part, frag, installed, root):
 def check_links(root):
     installed = installed_docs(root)
     bad = ["%s: not installed into the doc directory (CMakeLists.txt install())" % rel
-           for rel in ["README.md"] + user_pages(root) if rel not in installed]
+           for rel in doc_files(root) if rel not in installed and rel not in NOT_INSTALLED]
     top = os.path.realpath(root)
     for rel in doc_files(root):
         path = os.path.join(root, rel)
@@ -218,7 +220,10 @@ def check_blocks(root):
             bad.append("docs/blocks.md: block %s has no section (a heading naming it)" % name)
     for rel in ("README.md", "MANIFEST.md"):
         path = os.path.join(root, rel)
-        text = open(path, encoding="utf-8").read() if os.path.exists(path) else ""
+        text = ""
+        if os.path.exists(path):
+            with open(path, encoding="utf-8") as f:
+                text = f.read()
         for name in names:
             if "`%s`" % name not in text:
                 bad.append("%s: block %s is not listed (as `%s`)" % (rel, name, name))

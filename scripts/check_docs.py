@@ -230,9 +230,26 @@ def check_blocks(root):
     return bad
 
 
+def check_examples(root):
+    """Every example flowgraph is pictured in docs/examples.md (its figure from
+    scripts/draw_flowgraphs.py); the link check makes sure the figure exists."""
+    bad = []
+    page = os.path.join(root, "docs", "examples.md")
+    text = ""
+    if os.path.exists(page):
+        with open(page, encoding="utf-8") as f:
+            text = f.read()
+    for path in sorted(glob.glob(os.path.join(root, "examples", "*.grc"))):
+        name = os.path.splitext(os.path.basename(path))[0]
+        if "(figures/flowgraph_%s.png)" % name not in text:
+            bad.append("docs/examples.md: example %s is not pictured (figures/flowgraph_%s."
+                       "png, scripts/draw_flowgraphs.py)" % (name, name))
+    return bad
+
+
 def check(root):
     """Every failure, one line each."""
-    return check_sizes(root) + check_links(root) + check_blocks(root)
+    return check_sizes(root) + check_links(root) + check_blocks(root) + check_examples(root)
 
 
 def main(argv):
@@ -244,8 +261,8 @@ def main(argv):
     if not bad:
         print("check_docs: README <= %d lines, user pages <= %d, every link resolves in the "
               "source tree and the installed docs, %d GRC blocks listed in blocks.md, "
-              "README.md and MANIFEST.md" % (README_MAX_LINES, PAGE_MAX_LINES,
-                                             len(block_names(root))))
+              "README.md and MANIFEST.md, every example pictured"
+              % (README_MAX_LINES, PAGE_MAX_LINES, len(block_names(root))))
     return 1 if bad else 0
 
 

@@ -100,6 +100,16 @@ class qa_check_docs(gr_unittest.TestCase):
             "README.md: block beta is not listed (as `beta`)",
             "MANIFEST.md: block beta is not listed (as `beta`)"])
 
+    def test_every_example_is_pictured(self):
+        root = self.tree({"examples/seek.grc": "options: {}\n"})
+        self.assertEqual(check_docs.check(root), [
+            "docs/examples.md: example seek is not pictured (figures/flowgraph_seek.png, "
+            "scripts/draw_flowgraphs.py)"])
+        page = "# Examples\n\n![seek](figures/flowgraph_seek.png)\n"
+        root = self.tree({"examples/seek.grc": "options: {}\n", "docs/examples.md": page,
+                          "docs/figures/flowgraph_seek.png": "png"})
+        self.assertEqual(check_docs.check(root), [])
+
 
 if __name__ == "__main__":
     gr_unittest.run(qa_check_docs)

@@ -11,6 +11,7 @@ the module installed):
     /usr/bin/python3 scripts/sitl_study.py --vehicle arducopter --distance 1000 \\
         --seeds 1-5 [--strategy adaptive] [--speedup 10] [--wind-from DEG,M_S] [--sitl DIR]
         [--arrival self] [--declination DEG] [--wind-speed M_S] [--pitch DEG] [--forecast]
+        [--out DIR]
 
 With --wind-speed the SITL wind blows at that speed from a direction drawn from each
 seed (or --wind-from's), and the simulated column flies the same mean wind; both
@@ -25,7 +26,9 @@ straight line to the 200 m arrival radius.
 """
 
 import argparse
+import json
 import math
+import os
 import random
 import statistics
 import sys
@@ -59,6 +62,9 @@ def main(argv):
                    help="wind of this speed (m/s) from a direction drawn from the seed")
     p.add_argument("--forecast", action="store_true",
                    help="hand the seeker the wind as its forecast (exact)")
+    p.add_argument("--out", default=None, metavar="DIR",
+                   help="write each seed's summary (seed_N.json) and true track "
+                        "(seed_N.png) into DIR")
     p.add_argument("--sitl", default=None)
     p.add_argument("--arrival", default="oracle", choices=("oracle", "self"))
     p.add_argument("--declination", type=float, default=None,
@@ -74,7 +80,7 @@ def main(argv):
         if a.wind_speed is not None:
             wind_ = (a.wind_speed, random.Random(seed).uniform(0.0, 360.0))
         kw = {} if a.declination is None else {"declination_deg": a.declination}
-        s, _ = sitl_rehearsal.rehearse(a.vehicle, a.distance, a.strategy, seed, a.speedup,
+        s, rec = sitl_rehearsal.rehearse(a.vehicle, a.distance, a.strategy, seed, a.speedup,
                                        wind_, sitl_dir=a.sitl,
                                        self_arrival=a.arrival == "self",
                                        pitch_deg=a.pitch,
@@ -98,6 +104,11 @@ def main(argv):
         sim_ratio = (ground / sim.summary.shortest_path_m if wind_ is not None
                      else sim.summary.ratio)
         rows.append((s, sim, sim_ratio))
+        if a.out:
+            os.makedirs(a.out, exist_ok=True)
+            with open(os.path.join(a.out, "seed_%d.json" % seed), "w") as f:
+                json.dump(dict(s, simulated_ratio=sim_ratio), f, indent=1, default=str)
+            sitl_rehearsal.trajectory(s, rec, os.path.join(a.out, "seed_%d.png" % seed))
         arr = s.get("arrival", {})
         print("seed %3d  %s  ratio %.3f (simulated %.3f)  flight %6.1f s  wall %5.1f s  "
               "height %.1f-%.1f m  compass %.1f deg east%s%s%s" % (

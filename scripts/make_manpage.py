@@ -16,6 +16,24 @@ empty help is an error (exit 1), so a broken program fails the build, not the pa
 import re
 import subprocess
 import sys
+import textwrap
+
+#: The NAME line of each program (man's one-line summary); others take the first
+#: sentence of their help, cut at a word.
+SUMMARIES = {
+    "rfseek-sim": "one closed-loop seek through GNU Radio, with its figures",
+    "rfseek-live": "the seek with a radio or a recording, a vehicle link, or rehearsed",
+    "rfseek-sitl": "the seek flown by ArduPilot's or PX4's SITL firmware, GPS off",
+    "rfseek-montecarlo": "Monte Carlo studies of the closed loop (threads or Dask)",
+    "rfseek-plot-montecarlo": "figures and tables of rfseek-montecarlo results",
+    "rfseek-soak": "memory of many flowgraphs and of a long study",
+    "rfseek-bench-acquire": "benchmark: burst timing acquisition on a pulsed beacon",
+    "rfseek-bench-import": "benchmark: the time to import the module",
+    "rfseek-bench-world": "benchmark: the cost of synthesising a beacon slot",
+    "rfseek-bench-estimator": "benchmark: the cost of one frequency estimate",
+    "rfseek-bench-loop": "benchmark: the cost of the closed loop per slot",
+    "rfseek-estimator-study": "the estimator's accuracy against the Cramer-Rao bound",
+}
 
 
 def roff_escape(line):
@@ -28,8 +46,10 @@ def roff_escape(line):
 
 
 def summary(name, text):
-    """The program's one-line summary: the first sentence of the description (the text
-    after the usage block), or a generic one."""
+    """The program's one-line summary: SUMMARIES', else the first sentence of the
+    description (the text after the usage block) cut to 70 characters at a word."""
+    if name in SUMMARIES:
+        return SUMMARIES[name]
     lines = text.splitlines()
     i = 0
     if lines and lines[0].lower().startswith("usage:"):
@@ -39,7 +59,7 @@ def summary(name, text):
         line = line.strip()
         if line and not line.lower().startswith("usage"):
             line = re.sub(r"^%s:\s*" % re.escape(name), "", line)
-            return line.split(". ")[0].rstrip(".:")
+            return textwrap.shorten(line.split(". ")[0].rstrip(".:"), 70, placeholder="...")
     return "a program of gr-rfseek"
 
 
@@ -49,7 +69,10 @@ def page(name, version, text):
     out = [".TH %s 1 \"\" \"gr-rfseek %s\" \"User Commands\"" % (name.upper(), version),
            ".SH NAME", "%s \\- %s" % (name, roff_escape(summary(name, text))),
            ".SH DESCRIPTION", ".nf"]
-    out += [roff_escape(line) for line in text.rstrip("\n").splitlines()]
+    for line in text.rstrip("\n").splitlines():  # long lines wrapped, indent kept
+        indent = line[:len(line) - len(line.lstrip())]
+        for part in (textwrap.wrap(line, 88, subsequent_indent=indent) or [""]):
+            out.append(roff_escape(part))
     out += [".fi", ".SH SEE ALSO",
             "The gr-rfseek user guide, installed in share/doc/gr-rfseek (README.md and "
             "docs/index.md)."]

@@ -17,6 +17,9 @@ from .sitl import SitlError, _ACK_RESULTS, mav_client
 #: The plane is handed over once its airspeed has varied by at most SETTLED_MPS over
 #: SETTLED_S s of the autopilot's clock.
 SETTLED_MPS, SETTLED_S = 0.5, 3.0
+#: ArduCopter is flown forward at the seek's pitch this long (autopilot's clock) before
+#: the hand-over.
+COPTER_SPEED_UP_S = 4.0
 
 
 class pilot:
@@ -33,7 +36,8 @@ class pilot:
     entered at), released. PX4: a level SET_ATTITUDE_TARGET stream at take-off thrust,
     OFFBOARD, arm, climb, hover thrust until the link's own stream takes over."""
 
-    def __init__(self, proc, altitude_m=50.0, wall_timeout_s=120.0, log=None):
+    def __init__(self, proc, altitude_m=50.0, wall_timeout_s=120.0, log=None,
+                 cruise_pitch_deg=None):
         if not (10.0 <= altitude_m <= 500.0):
             raise ValueError("altitude_m = %r: must be in [10, 500] m" % (altitude_m,))
         self.proc = proc
@@ -44,6 +48,9 @@ class pilot:
         self.log = log or (lambda text: None)
         self.client = mav_client(proc.pilot_link, connect_timeout=min(30.0, wall_timeout_s))
         self.hover_thrust = 0.5
+        # ArduCopter: handed over in forward flight at this pitch (None: from a hover).
+        self.cruise_pitch_deg = cruise_pitch_deg
+        self._q = (1.0, 0.0, 0.0, 0.0)  # the attitude the streaming thread holds
         self.ground_alt = None
         self._hovering = False
         self._hover_thread = None
@@ -125,9 +132,10 @@ class pilot:
         g = self.client.last.get("GLOBAL_POSITION_INT")
         return None if g is None else g.get("relative_alt") / 1000.0
 
-    def _attitude_target(self, thrust, yaw=None):
-        q = (1.0, 0.0, 0.0, 0.0) if yaw is None else (
-            math.cos(yaw / 2), 0.0, 0.0, math.sin(yaw / 2))
+    def _attitude_target(self, thrust, yaw=None, q=None):
+        if q is None:
+            q = (1.0, 0.0, 0.0, 0.0) if yaw is None else (
+                math.cos(yaw / 2), 0.0, 0.0, math.sin(yaw / 2))
         self.client.send("SET_ATTITUDE_TARGET", target_system=1, target_component=1,
                          type_mask=7, q=q, thrust=thrust)
 
@@ -147,6 +155,8 @@ class pilot:
             self._rc(1500)
             self._set_mode("GUIDED_NOGPS")
             self._release_rc()
+            if self.cruise_pitch_deg:
+                self._copter_to_speed()
         elif self.vehicle == "arduplane":
             # Forced at once, the plane took off before its attitude had settled and
             # flew into the ground: 20 s on the autopilot's clock first.
@@ -204,13 +214,36 @@ class pilot:
         self._until("settling to cruise", settled, sim_timeout_s=90.0)
         self.log("at cruise, %.1f m/s, after %.1f s" % (speeds[-1][1], self._clock() - t0))
 
+    def _copter_to_speed(self):
+        """A hover drifts with the wind and a seek would begin at no airspeed: hand over
+        as from the seek's own flight, pitched forward on the current yaw for
+        COPTER_SPEED_UP_S of the autopilot's clock (the streaming thread holds it until
+        the link streams its own)."""
+        att = self.client.last.get("ATTITUDE")
+        yaw = float(att.get("yaw")) if att is not None else 0.0
+        pitch = -math.radians(self.cruise_pitch_deg)  # nose down
+        cy, sy, cp, sp = math.cos(yaw / 2), math.sin(yaw / 2), math.cos(pitch / 2), math.sin(pitch / 2)
+        self._q = (cp * cy, -sp * sy, sp * cy, cp * sy)
+        self._hovering = True
+        self._hover_thread = threading.Thread(target=self._hover, daemon=True)
+        self._hover_thread.start()
+        t0 = self._clock()
+        self._until("getting up to speed", lambda: self._clock() - t0 >= COPTER_SPEED_UP_S)
+
     def _hover(self):
         while self._hovering and self.proc.alive():
             try:
-                self._attitude_target(self.hover_thrust)
+                self._attitude_target(self.hover_thrust, q=self._q)
             except (OSError, SitlError):
                 return
             time.sleep(0.05 / self.proc.speedup)
+
+    def keep_streaming(self, until):
+        """The pilot's setpoints (PX4's hover, ArduCopter's forward flight) go on until
+        until() (the link streams its own); nothing to do if none are streamed."""
+        if not self._hovering:
+            return
+        self.keep_px4_hovering(until)
 
     def keep_px4_hovering(self, until):
         """PX4: the hover setpoints go on until until() (the link streams its own)."""

@@ -263,7 +263,8 @@ def rehearse(vehicle, distance_m=800.0, strategy="adaptive", seed=1, speedup=10.
     proc = sitl_process(vehicle, sitl_dir, speedup, wind, params=p.get("params"))
     with proc:
         log("started %s (instance %d) in %s" % (proc.binary, proc.instance, proc.workdir))
-        pl = pilot(proc, sc.altitude_m, log=log)
+        pl = pilot(proc, sc.altitude_m, log=log,
+                   cruise_pitch_deg=p.get("pitch_deg") if vehicle == "arducopter" else None)
         reader = loop = None
         try:
             pl.take_off()
@@ -278,8 +279,7 @@ def rehearse(vehicle, distance_m=800.0, strategy="adaptive", seed=1, speedup=10.
             except OSError as e:
                 raise SitlError("the link to %s: %s" % (proc.link, e)) from None
             loop.start()
-            if proc.spec["kind"] == "px4":
-                pl.keep_px4_hovering(lambda: loop.link.status()["state"] == "commanding")
+            pl.keep_streaming(lambda: loop.link.status()["state"] == "commanding")
             while not loop.finished():
                 if not proc.alive():
                     raise SitlError("the SITL stopped during the seek: %s" % proc.log_tail(1))

@@ -34,6 +34,17 @@ double check_speedup(double speedup)
                                     std::to_string(speedup));
     return speedup;
 }
+// What a controller in the same flowgraph must be told (seeking_controller warns when
+// it was told otherwise): the speed the vehicle believes it flies, the carrier and the
+// slot period. Fixed with the scenario: made once, carried by every beacon tag.
+pmt::pmt_t world_info(const scenario& sc)
+{
+    pmt::pmt_t w = pmt::make_dict();
+    w = pmt::dict_add(
+        w, pmt::mp("speed_mps"), pmt::from_double(sc.speed_mps + sc.airspeed_error_mps));
+    w = pmt::dict_add(w, pmt::mp("carrier_hz"), pmt::from_double(sc.carrier_hz));
+    return pmt::dict_add(w, pmt::mp("slot_period_s"), pmt::from_double(sc.slot_period_s));
+}
 
 } // namespace
 
@@ -75,7 +86,8 @@ channel_source_impl::channel_source_impl(const scenario& sc,
       d_key_rx_time(pmt::mp("rx_time")),
       d_key_rx_rate(pmt::mp("rx_rate")),
       d_key_rx_freq(pmt::mp("rx_freq")),
-      d_key_world(pmt::mp("world"))
+      d_key_world(pmt::mp("world")),
+      d_world_info(world_info(sc))
 {
     d_speedup = check_speedup(speedup);
     d_cmd_heading = d_world.heading_rad();
@@ -374,15 +386,7 @@ void channel_source_impl::begin_slot(std::uint64_t offset)
     if (!d_follow) // following, the heading comes from the autopilot (its nav)
         b = pmt::dict_add(
             b, d_key_heading, pmt::from_double(d_world.measured_heading_rad()));
-    // What a controller in the same flowgraph must be told (seeking_controller warns
-    // when it was told otherwise): the speed the vehicle believes it flies, the
-    // carrier and the slot period.
-    pmt::pmt_t w = pmt::make_dict();
-    w = pmt::dict_add(
-        w, pmt::mp("speed_mps"), pmt::from_double(sc.speed_mps + sc.airspeed_error_mps));
-    w = pmt::dict_add(w, pmt::mp("carrier_hz"), pmt::from_double(sc.carrier_hz));
-    w = pmt::dict_add(w, pmt::mp("slot_period_s"), pmt::from_double(sc.slot_period_s));
-    b = pmt::dict_add(b, d_key_world, w);
+    b = pmt::dict_add(b, d_key_world, d_world_info);
     add_item_tag(0, offset, d_key_beacon, b, alias_pmt());
     publish_state();
 }

@@ -118,6 +118,7 @@ private:
     const pmt::pmt_t d_key_rx_rate;
     const pmt::pmt_t d_key_rx_freq;
     const pmt::pmt_t d_key_world;
+    const pmt::pmt_t d_world_info; // the beacon tag's "world" (world_info)
 };
 
 } // namespace rfseek

@@ -18,6 +18,24 @@ from gnuradio import blocks, gr, gr_unittest
 from gnuradio import rfseek
 
 
+def console(lines, until=None, timeout=300):
+    """Runs a script (its lines) in a fresh interpreter: (exit status, its console
+    output, GNU Radio's log included). With `until`, a line goes to the script's stdin
+    once a line of its output holds `until` (the script reads it to end)."""
+    p = subprocess.Popen([sys.executable, "-c", "\n".join(lines)], stdin=subprocess.PIPE,
+                         stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+    seen = []
+    if until is not None:
+        for line in p.stdout:  # ends at the script's end too
+            seen.append(line)
+            if until in line:
+                break
+        p.stdin.write("stop\n")
+        p.stdin.flush()
+    out, _ = p.communicate(timeout=timeout)
+    return p.returncode, "".join(seen) + out
+
+
 class pilot(gr.basic_block):
     """Answers every state message with a cmd (the controller's role in a closed loop);
     optionally sends a malformed message first on chosen slots."""
@@ -248,11 +266,12 @@ class qa_channel_source(gr_unittest.TestCase):
 
     def test_lockstep_without_a_controller_says_what_it_waits_for(self):
         # The first flowgraph a user builds: source -> estimator -> message_debug with
-        # the defaults (lockstep). The world waits for a cmd that never comes; within
-        # 2 s it must say so, once, and what would end the wait. In a process of its
-        # own: GNU Radio's logger writes to that process's console.
-        script = "\n".join([
-            "import time",
+        # the defaults (lockstep). The world waits for a cmd that never comes; it must
+        # say so, once, and what would end the wait (after 1.5 s of waiting). In a
+        # process of its own (GNU Radio's logger writes to that process's console),
+        # stopped once the warning has come.
+        rc, out = console([
+            "import select, sys",
             "from gnuradio import blocks, gr, rfseek",
             "tb = gr.top_block()",
             "sc = rfseek.scenario()",
@@ -262,39 +281,35 @@ class qa_channel_source(gr_unittest.TestCase):
             "tb.connect(src, est)",
             "tb.msg_connect(est, 'meas', dbg, 'store')",
             "tb.start()",
-            "time.sleep(4.0)",
+            "select.select([sys.stdin], [], [], 120.0)",
             "print('measurements', dbg.num_messages(), flush=True)",
             "tb.stop()",
-            "tb.wait()"])
-        run = subprocess.run([sys.executable, "-c", script], stdout=subprocess.PIPE,
-                             stderr=subprocess.STDOUT, text=True, timeout=120)
-        self.assertEqual(run.returncode, 0, run.stdout)
-        warnings = [l for l in run.stdout.splitlines() if "waits for a cmd" in l]
-        self.assertEqual(len(warnings), 1, run.stdout)
+            "tb.wait()"], until="waits for a cmd")
+        self.assertEqual(rc, 0, out)
+        warnings = [l for l in out.splitlines() if "waits for a cmd" in l]
+        self.assertEqual(len(warnings), 1, out)
         self.assertIn("lockstep=False", warnings[0])
-        self.assertIn("measurements 1", run.stdout)  # slot 0 only: it did wait
+        self.assertIn("measurements 1", out)  # slot 0 only: it did wait
 
     def test_a_closed_loop_does_not_warn_of_waiting(self):
         # In lockstep with a controller every wait is short: the timer starts again at
         # every slot, so a whole flight (thousands of short waits) says nothing.
-        script = "\n".join([
+        rc, out = console([
             "from gnuradio import rfseek",
             "from gnuradio.rfseek.flowgraphs import closed_loop",
             "sc = rfseek.scenario(seed=3, initial_distance_m=600.0)",
             "tb = closed_loop(sc, 'adaptive')",
             "tb.run()",
             "print('slots', tb.collector.states[-1]['slot'], flush=True)"])
-        run = subprocess.run([sys.executable, "-c", script], stdout=subprocess.PIPE,
-                             stderr=subprocess.STDOUT, text=True, timeout=300)
-        self.assertEqual(run.returncode, 0, run.stdout)
-        self.assertGreater(int(run.stdout.split()[-1]), 500)  # "slots N"
-        self.assertNotIn("waits for", run.stdout)
-        self.assertNotIn("controller was told", run.stdout)  # one scenario for both
+        self.assertEqual(rc, 0, out)
+        self.assertGreater(int(out.split()[-1]), 500)  # "slots N"
+        self.assertNotIn("waits for", out)
+        self.assertNotIn("controller was told", out)  # one scenario for both
 
     def test_a_controller_told_another_world_warns_once_per_quantity(self):
         # A world at 25 m/s on 2.4 GHz, a controller told 10 m/s and 2.0 GHz: each
         # quantity is named once, with both values; the slot period agrees, unnamed.
-        script = "\n".join([
+        rc, out = console([
             "from gnuradio import rfseek",
             "from gnuradio.rfseek.flowgraphs import closed_loop",
             "sc = rfseek.scenario(seed=3, initial_distance_m=600.0, speed_mps=25.0,",
@@ -303,15 +318,14 @@ class qa_channel_source(gr_unittest.TestCase):
             "cfg.speed_mps, cfg.carrier_hz = 10.0, 2.0e9",
             "tb = closed_loop(sc, cfg)",
             "tb.run()"])
-        run = subprocess.run([sys.executable, "-c", script], stdout=subprocess.PIPE,
-                             stderr=subprocess.STDOUT, text=True, timeout=300)
-        self.assertEqual(run.returncode, 0, run.stdout)
-        told = [l for l in run.stdout.splitlines() if "controller was told" in l]
-        self.assertEqual(len(told), 2, run.stdout)
+        self.assertEqual(rc, 0, out)
+        told = [l for l in out.splitlines() if "controller was told" in l]
+        self.assertEqual(len(told), 2, out)
         self.assertIn("speed_mps", told[0] + told[1])
-        self.assertIn("has 25 m/s but this controller was told 10 m/s", run.stdout)
-        self.assertIn("has 2.4e+09 Hz but this controller was told 2e+09 Hz", run.stdout)
-        self.assertNotIn("slot_period_s:", run.stdout)
+        self.assertIn("has 25 m/s but this controller was told 10 m/s", out)
+        self.assertIn("has 2.4e+09 Hz but this controller was told 2e+09 Hz", out)
+        self.assertNotIn("slot_period_s:", out)
+
 
 if __name__ == "__main__":
     gr_unittest.run(qa_channel_source)

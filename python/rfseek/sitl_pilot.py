@@ -222,7 +222,8 @@ class pilot:
         att = self.client.last.get("ATTITUDE")
         yaw = float(att.get("yaw")) if att is not None else 0.0
         pitch = -math.radians(self.cruise_pitch_deg)  # nose down
-        cy, sy, cp, sp = math.cos(yaw / 2), math.sin(yaw / 2), math.cos(pitch / 2), math.sin(pitch / 2)
+        cy, sy = math.cos(yaw / 2), math.sin(yaw / 2)
+        cp, sp = math.cos(pitch / 2), math.sin(pitch / 2)
         self._q = (cp * cy, -sp * sy, sp * cy, cp * sy)
         self._hovering = True
         self._hover_thread = threading.Thread(target=self._hover, daemon=True)
@@ -243,10 +244,6 @@ class pilot:
         until() (the link streams its own); nothing to do if none are streamed."""
         if not self._hovering:
             return
-        self.keep_px4_hovering(until)
-
-    def keep_px4_hovering(self, until):
-        """PX4: the hover setpoints go on until until() (the link streams its own)."""
         try:
             self._until("handing over to the link", until, sim_timeout_s=30.0)
         finally:

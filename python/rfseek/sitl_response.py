@@ -165,7 +165,7 @@ def fly_sitl(vehicle, speedup, sitl_dir, log):
             t = first["time"]
             if proc.spec["kind"] == "px4":
                 link.handle_cmd(pmt.to_pmt({"heading": first["reported_heading"]}))
-                pl.keep_px4_hovering(lambda: link.status()["state"] == "commanding")
+                pl.keep_streaming(lambda: link.status()["state"] == "commanding")
             for dur, rel in SCHEDULE:
                 target = compass0 + rel
                 starts.append((t, target))

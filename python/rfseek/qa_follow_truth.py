@@ -44,6 +44,10 @@ def scenario():
     return sc
 
 
+def beacon_tags(sink):
+    return [t for t in sink.tags() if pmt.symbol_to_string(t.key) == "rfseek_beacon"]
+
+
 def wait_until(condition, timeout_s=10.0):
     deadline = time.monotonic() + timeout_s
     while not condition():
@@ -78,14 +82,15 @@ class qa_follow_truth(gr_unittest.TestCase):
                 src.to_basic_block()._post(pmt.intern("truth"), pmt.to_pmt(t))
             span = sequence[-1]["time"] - sequence[0]["time"]
             expected = int(span / sc.slot_period_s + 1e-9) + 1
-            self.assertTrue(wait_until(lambda: meas.num_messages() >= expected))
+            # The estimator and the sample sink run in their own threads: wait for both.
+            self.assertTrue(wait_until(lambda: meas.num_messages() >= expected
+                                       and len(beacon_tags(samples)) >= expected))
         finally:
             tb.stop()
             tb.wait()
         ms = [pmt.to_python(meas.get_message(i)) for i in range(meas.num_messages())]
         ss = [pmt.to_python(states.get_message(i)) for i in range(states.num_messages())]
-        tags = [t for t in samples.tags() if pmt.symbol_to_string(t.key) == "rfseek_beacon"]
-        return sc, src, ms, ss, tags, expected
+        return sc, src, ms, ss, beacon_tags(samples), expected
 
     def test_the_beacon_is_the_doppler_of_the_true_motion(self):
         seq = truths(60)  # 1.18 s of truth at 50 Hz: slots 0..23

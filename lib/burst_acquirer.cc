@@ -152,6 +152,7 @@ acquired_window burst_acquirer::make_window(std::uint64_t start,
     w.slot = slot;
     w.detection = d;
     w.timing_error = err;
+    w.lock = d_acquisitions;
     const auto* x = at(start);
     w.samples.assign(x, x + d_cfg.window_len);
     return w;
@@ -247,16 +248,16 @@ bool burst_acquirer::step_confirm(std::vector<acquired_window>& out)
     std::uint64_t slot0;
     const double first = static_cast<double>(d_cand);
     if (!d_have_slot) {
-        slot0 = static_cast<std::uint64_t>(std::floor(first / d_cfg.period));
+        slot0 = static_cast<std::uint64_t>(std::floor((first + d_shift) / d_cfg.period));
         d_have_slot = true;
     } else {
         const double k = std::llround((first - d_last_next) / d_period);
         slot0 = d_slot + static_cast<std::uint64_t>(std::max(0.0, k));
     }
     const std::uint64_t slot1 = slot0 + 1 + static_cast<std::uint64_t>(d_tries);
+    ++d_acquisitions;
     out.push_back(make_window(d_cand, d_det.test(at(d_cand)), 0.0, slot0));
     out.push_back(make_window(p2, d_det.test(at(p2)), err, slot1));
-    ++d_acquisitions;
     d_state = state::locked;
     d_hits = 2;
     d_misses = 0;
@@ -285,12 +286,16 @@ bool burst_acquirer::step_locked(std::vector<acquired_window>& out)
         d_period = std::clamp(
             d_period + d_cfg.loop_beta * err, 0.99 * d_cfg.period, 1.01 * d_cfg.period);
         d_next += a * err + d_period;
+        d_recheck = 0;
     } else {
         ++d_misses;
         d_next += d_period;
     }
     out.push_back(make_window(p, det, err, d_slot++));
-    if (d_misses >= d_cfg.max_misses) {
+    // After a gap the phase comes from the receiver's clock: unless one of the next two
+    // bursts is where it says, the count was wrong and the beacon must be found again.
+    const bool lost_at_gap = d_recheck > 0 && !det.detected && --d_recheck == 0;
+    if (d_misses >= d_cfg.max_misses || lost_at_gap) {
         ++d_losses;
         d_last_next = d_next;
         d_state = state::search;
@@ -298,6 +303,39 @@ bool burst_acquirer::step_locked(std::vector<acquired_window>& out)
         d_span.clear();
     }
     return true;
+}
+
+void burst_acquirer::gap(double samples)
+{
+    ++d_gaps;
+    d_buf.clear();
+    d_base = d_end;
+    d_span.clear();
+    const bool plausible =
+        std::isfinite(samples) && samples > 0.0 && samples < 1e6 * d_cfg.period;
+    if (plausible) {
+        d_shift += samples;
+        d_last_next -= samples; // (in the coordinates of the samples after the gap)
+    }
+    const double end = static_cast<double>(d_end);
+    if (d_state == state::locked && plausible) {
+        // Before the gap, sample d_end would have been at d_end + samples: the next
+        // burst whose window and timing margin lie wholly after the gap, on the same
+        // phase; the slots in between are missing.
+        const double after = end + samples;
+        const double lead = d_next - d_margin;
+        const double k = lead < after ? std::ceil((after - lead) / d_period) : 0.0;
+        d_next += k * d_period - samples;
+        d_slot += static_cast<std::uint64_t>(k);
+        d_recheck = 2;
+        return;
+    }
+    if (d_state == state::locked) {
+        ++d_losses;
+        d_last_next = end; // slots go on from the last one
+    }
+    d_state = state::search;
+    d_pos = d_span_start = d_end;
 }
 
 bool burst_acquirer::step(std::vector<acquired_window>& out)

@@ -103,7 +103,7 @@ doppler_estimator_impl::doppler_estimator_impl(double samp_rate,
       d_offset(offset),
       d_buf(window_len),
       d_fields(pmt::PMT_NIL),
-      d_clock_rate(samp_rate),
+      d_clock(samp_rate),
       d_port_meas(pmt::mp("meas")),
       d_key_rx_time(pmt::mp("rx_time")),
       d_key_rx_rate(pmt::mp("rx_rate"))
@@ -133,13 +133,6 @@ doppler_estimator_impl::doppler_estimator_impl(double samp_rate,
     message_port_register_out(d_port_meas);
 }
 
-double doppler_estimator_impl::time_of(std::uint64_t abs) const
-{
-    return d_anchor_time +
-           (static_cast<double>(abs) - static_cast<double>(d_anchor_offset)) /
-               d_clock_rate;
-}
-
 void doppler_estimator_impl::start_window(std::uint64_t abs, const pmt::pmt_t& fields)
 {
     d_collecting = true;
@@ -160,7 +153,10 @@ void doppler_estimator_impl::finish_window(bool truncated)
     }
     if (truncated)
         ++d_truncated;
-    publish(d_start, e, d_fields, d_windows, d_detect ? &det : nullptr, nullptr);
+    // Periodic windows are numbered by the period they start in, counted in time.
+    const std::uint64_t slot =
+        d_periodic ? (d_start + d_shift - d_offset) / d_period : d_windows;
+    publish(d_start, e, d_fields, slot, d_detect ? &det : nullptr, nullptr);
 }
 
 void doppler_estimator_impl::publish(std::uint64_t start,
@@ -192,7 +188,7 @@ void doppler_estimator_impl::publish(std::uint64_t start,
     }
     if (!pmt::dict_has_key(m, pmt::mp("slot")))
         m = pmt::dict_add(m, pmt::mp("slot"), pmt::from_uint64(slot));
-    m = pmt::dict_add(m, pmt::mp("time"), pmt::from_double(time_of(start)));
+    m = pmt::dict_add(m, pmt::mp("time"), pmt::from_double(d_clock.time_of(start)));
     m = pmt::dict_add(m, pmt::mp("offset"), pmt::from_uint64(start));
     m = pmt::dict_add(m, pmt::mp("freq_hz"), pmt::from_double(e.freq_hz));
     m = pmt::dict_add(m, pmt::mp("snr_db"), pmt::from_double(e.snr_db));
@@ -201,9 +197,11 @@ void doppler_estimator_impl::publish(std::uint64_t start,
     if (det)
         m = pmt::dict_add(
             m, pmt::mp("detect_margin_db"), pmt::from_double(det->margin_db));
-    if (acq)
+    if (acq) {
         m = pmt::dict_add(
             m, pmt::mp("timing_error"), pmt::from_double(acq->timing_error));
+        m = pmt::dict_add(m, pmt::mp("lock"), pmt::from_uint64(acq->lock));
+    }
     m = pmt::dict_add(m, pmt::mp("valid"), pmt::from_bool(e.valid));
     message_port_pub(d_port_meas, m);
 }
@@ -216,9 +214,13 @@ void doppler_estimator_impl::feed(const gr_complex* in,
         if (!d_collecting) {
             if (!d_periodic)
                 return; // between tagged or detected windows: nothing to measure
+            // Window starts are offset + k period in the stream's time, which runs
+            // d_shift samples ahead of the sample index after gaps.
+            const std::uint64_t now = abs + d_shift;
             std::uint64_t next = d_offset;
-            if (abs > d_offset)
-                next = d_offset + ((abs - d_offset + d_period - 1) / d_period) * d_period;
+            if (now > d_offset)
+                next = d_offset + ((now - d_offset + d_period - 1) / d_period) * d_period;
+            next -= d_shift;
             if (next >= abs + count)
                 return;
             in += next - abs;
@@ -256,10 +258,77 @@ void doppler_estimator_impl::on_rate_tag(std::uint64_t offset, const pmt::pmt_t&
             return; // neither frequencies nor times take a rate that cannot be used
         }
     }
-    // Re-anchor so earlier samples keep their times.
-    d_anchor_time = time_of(offset);
-    d_anchor_offset = offset;
-    d_clock_rate = rate;
+    d_clock.on_rate(offset, rate); // earlier samples keep their times
+}
+
+void doppler_estimator_impl::on_time_tag(std::uint64_t offset, const pmt::pmt_t& value)
+{
+    if (!(pmt::is_tuple(value) && pmt::length(value) == 2)) {
+        d_logger->warn("rx_time tag dropped: not a (seconds, fraction) tuple");
+        return;
+    }
+    const pmt::pmt_t s = pmt::tuple_ref(value, 0);
+    const pmt::pmt_t f = pmt::tuple_ref(value, 1);
+    if (!((pmt::is_uint64(s) || pmt::is_integer(s)) && pmt::is_real(f))) {
+        d_logger->warn("rx_time tag dropped: not a (seconds, fraction) tuple");
+        return;
+    }
+    const double secs = pmt::is_uint64(s) ? static_cast<double>(pmt::to_uint64(s))
+                                          : static_cast<double>(pmt::to_long(s));
+    bool accepted = false;
+    const sample_clock::jump j =
+        d_clock.on_time(offset, secs, pmt::to_double(f), &accepted);
+    if (!accepted) {
+        d_logger->warn("rx_time tag dropped: not a finite time");
+        return;
+    }
+    if (!j.discontinuity)
+        return;
+    // Samples were lost (or the clock set back): nothing measured straddles the gap.
+    if (d_clock.discontinuities() <= 10)
+        d_logger->warn("rx_time at sample {} is {:.6f} s off the sample count ({:.0f} "
+                       "samples lost): the timing goes on from the new time{}",
+                       offset,
+                       j.seconds,
+                       j.samples,
+                       d_clock.discontinuities() == 10
+                           ? " (further discontinuities are counted silently; see "
+                             "discontinuity_count())"
+                           : "");
+    if (d_collecting && d_start < offset)
+        finish_window(true);
+    if (d_acq)
+        d_acq->gap(j.samples);
+    if (std::isfinite(j.samples) && j.samples >= 0.5 && j.samples < 1e15)
+        d_shift += static_cast<std::uint64_t>(std::llround(j.samples));
+}
+
+void doppler_estimator_impl::acquire(const gr_complex* in, std::uint64_t count)
+{
+    if (!d_acq || count == 0)
+        return;
+    std::vector<acquired_window> done;
+    d_acq->push(in, static_cast<std::size_t>(count), done);
+    for (const auto& w : done)
+        publish(w.start,
+                d_est.estimate(w.samples.data()),
+                pmt::PMT_NIL,
+                w.slot,
+                &w.detection,
+                &w);
+}
+
+void doppler_estimator_impl::forget_old_anchors()
+{
+    // The oldest sample a window still to be published can start at.
+    std::uint64_t oldest = d_seen;
+    if (d_collecting)
+        oldest = std::min(oldest, d_start);
+    if (d_acq)
+        oldest = std::min(oldest, d_acq->oldest_held());
+    if (d_energy)
+        oldest = std::min<std::uint64_t>(oldest, d_hist_end - d_hist.size());
+    d_clock.forget_before(oldest);
 }
 
 int doppler_estimator_impl::work(int noutput_items,
@@ -317,19 +386,10 @@ int doppler_estimator_impl::work(int noutput_items,
         if (!is_time && !is_rate && !is_window)
             continue;
         feed(in + (pos - base), pos, t.offset - pos);
+        acquire(in + (pos - base), t.offset - pos);
         pos = t.offset;
         if (is_time) {
-            if (pmt::is_tuple(t.value) && pmt::length(t.value) == 2) {
-                const pmt::pmt_t s = pmt::tuple_ref(t.value, 0);
-                const pmt::pmt_t f = pmt::tuple_ref(t.value, 1);
-                if ((pmt::is_uint64(s) || pmt::is_integer(s)) && pmt::is_real(f)) {
-                    d_anchor_time =
-                        static_cast<double>(pmt::is_uint64(s) ? pmt::to_uint64(s)
-                                                              : pmt::to_long(s)) +
-                        pmt::to_double(f);
-                    d_anchor_offset = t.offset;
-                }
-            }
+            on_time_tag(t.offset, t.value);
         } else if (is_rate) {
             on_rate_tag(t.offset, t.value);
         } else {
@@ -339,18 +399,8 @@ int doppler_estimator_impl::work(int noutput_items,
         }
     }
     feed(in + (pos - base), pos, end - pos);
+    acquire(in + (pos - base), end - pos);
     d_seen = end;
-    if (d_acq) {
-        std::vector<acquired_window> done;
-        d_acq->push(in, static_cast<std::size_t>(noutput_items), done);
-        for (const auto& w : done)
-            publish(w.start,
-                    d_est.estimate(w.samples.data()),
-                    pmt::PMT_NIL,
-                    w.slot,
-                    &w.detection,
-                    &w);
-    }
     if (d_energy) {
         // Keep the last samples for a burst whose start is found later in them.
         const std::size_t keep = 1024;
@@ -364,6 +414,7 @@ int doppler_estimator_impl::work(int noutput_items,
         }
         d_hist_end = end;
     }
+    forget_old_anchors();
     return noutput_items;
 }
 
@@ -472,9 +523,7 @@ void doppler_estimator_impl::set_samp_rate(double samp_rate)
     } catch (const std::invalid_argument& e) {
         throw std::invalid_argument(std::string("doppler_estimator: ") + e.what());
     }
-    d_anchor_time = time_of(d_seen);
-    d_anchor_offset = d_seen;
-    d_clock_rate = samp_rate;
+    d_clock.on_rate(d_seen, samp_rate);
 }
 
 double doppler_estimator_impl::pfa() const
@@ -506,6 +555,12 @@ std::string doppler_estimator_impl::acquire_state() const
 {
     gr::thread::scoped_lock lock(setlock());
     return d_acq ? d_acq->state_name() : std::string();
+}
+
+std::uint64_t doppler_estimator_impl::discontinuity_count() const
+{
+    gr::thread::scoped_lock lock(setlock());
+    return d_clock.discontinuities();
 }
 
 double doppler_estimator_impl::period_estimate() const

@@ -7,6 +7,7 @@
 #ifndef INCLUDED_RFSEEK_DOPPLER_ESTIMATOR_IMPL_H
 #define INCLUDED_RFSEEK_DOPPLER_ESTIMATOR_IMPL_H
 
+#include "sample_clock.h"
 #include <gr-rfseek/burst_acquirer.h>
 #include <gr-rfseek/burst_detector.h>
 #include <gr-rfseek/doppler_estimator.h>
@@ -63,6 +64,7 @@ public:
     void set_pfa(double pfa) override;
     std::string acquire_state() const override;
     double period_estimate() const override;
+    std::uint64_t discontinuity_count() const override;
 
 private:
     gr::thread::mutex& setlock() const
@@ -78,9 +80,11 @@ private:
                  std::uint64_t slot,
                  const tone_detection* det,
                  const acquired_window* acq);
-    double time_of(std::uint64_t abs) const;
     void apply_rate(double rate);
     void on_rate_tag(std::uint64_t offset, const pmt::pmt_t& value);
+    void on_time_tag(std::uint64_t offset, const pmt::pmt_t& value);
+    void acquire(const gr_complex* in, std::uint64_t count);
+    void forget_old_anchors();
 
     tone_estimator d_est;
     const bool d_periodic;
@@ -97,9 +101,9 @@ private:
     std::size_t d_fill = 0;
     std::uint64_t d_start = 0;
     pmt::pmt_t d_fields;
-    double d_anchor_time = 0.0;
-    std::uint64_t d_anchor_offset = 0;
-    double d_clock_rate;
+    sample_clock d_clock;      // times from the rx_time / rx_rate tag in force
+    std::uint64_t d_shift = 0; // samples lost in the stream's gaps (periodic windows
+                               // and their slots follow time across them)
     std::uint64_t d_windows = 0, d_invalid = 0, d_truncated = 0;
     std::unique_ptr<burst_acquirer> d_acq;   // alignment "acquire"
     std::unique_ptr<tone_detector> d_detect; // the per-window test (pfa > 0), others

@@ -39,6 +39,7 @@ struct RFSEEK_API acquired_window {
     std::uint64_t slot = 0;    //!< period number counted from the stream's first sample
     tone_detection detection;  //!< the detection test of this window
     double timing_error = 0.0; //!< matched-filter start - predicted start (samples)
+    std::uint64_t lock = 0;    //!< the acquisition it belongs to (1, 2, ...)
     std::vector<std::complex<float>> samples; //!< the window_len samples from start
 };
 
@@ -62,6 +63,11 @@ struct RFSEEK_API acquired_window {
  * bursts are emitted too (detection.detected false) and the loop coasts; after
  * max_misses in a row it searches again. slot is the period number from the stream's
  * start, so a burst lost in a fade or a search leaves a gap.
+ * Discontinuity: gap() says that samples were lost between the samples pushed so far
+ * and the next (an overflow, told by the receiver's rx_time). The bursts go on in time:
+ * a lock carries its phase across the gap (the bursts inside it are missing slots, never
+ * a renumbering) and must find one of the next two predicted bursts, or it searches
+ * again; no window straddles the gap.
  */
 class RFSEEK_API burst_acquirer
 {
@@ -82,6 +88,17 @@ public:
     std::uint64_t acquisitions() const { return d_acquisitions; }
     std::uint64_t losses() const { return d_losses; }
     std::uint64_t samples_seen() const { return d_end; }
+    //! The oldest sample a window still to come can start at (windows are emitted late).
+    std::uint64_t oldest_held() const { return d_base; }
+    std::uint64_t gaps() const { return d_gaps; }
+
+    /*!
+     * \brief Samples were lost after those pushed so far: `samples` of them (the
+     * receiver's count; fractional). A negative, non-finite or implausibly long gap
+     * (over 10^6 periods) ends a lock and searches again. Windows not yet emitted that
+     * need samples from before the gap are dropped.
+     */
+    void gap(double samples);
     const burst_acquirer_config& config() const { return d_cfg; }
     const tone_detector& detector() const { return d_det; }
 
@@ -135,7 +152,10 @@ private:
     double d_last_next = 0.0; // predicted start of slot d_slot when the lock was lost
     bool d_refined = false;   // the candidate's start has been refined
     double d_pred = 0.0;      // confirm: predicted start of the next burst
-    std::uint64_t d_acquisitions = 0, d_losses = 0;
+    std::uint64_t d_acquisitions = 0, d_losses = 0, d_gaps = 0;
+    double d_shift = 0.0; // samples lost in gaps so far (the stream's time in samples
+                          // is the sample index + d_shift)
+    int d_recheck = 0;    // after a gap: predicted bursts left to find one of
 };
 
 } // namespace rfseek

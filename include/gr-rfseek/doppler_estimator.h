@@ -34,12 +34,18 @@ namespace rfseek {
  * see burst_acquirer).
  * Each window gives one message on "meas": {slot, time, offset, freq_hz, snr_db,
  * power_db, noise_power_db, valid} plus every field of the aligning tag's dict (heading,
- * ...). time is the sample clock: from the latest rx_time/rx_rate tags when present, else
- * offset / samp_rate. An rx_rate tag also sets the rate frequencies are measured at
- * (the rate a radio actually granted; set_samp_rate does the same by hand): a chain that
- * decimates must scale it (radio_source does). slot comes from the tag; under "acquire"
- * it is the beacon period's number from the stream's start (a lost burst leaves a gap or
- * an invalid window); else it counts windows. A window cut short by the next tag, or of
+ * ...). time is the sample clock at the window's first sample, from the rx_time/rx_rate
+ * tags in force there when present, else offset / samp_rate. An rx_rate tag also sets
+ * the rate frequencies are measured at (the rate a radio actually granted;
+ * set_samp_rate does the same by hand): a chain that decimates must scale it
+ * (radio_source does). An rx_time tag that disagrees with the sample count by half a
+ * sample or more is a discontinuity (an overflow: UHD tags the first sample after it):
+ * a window straddling it is invalid, "periodic" windows and "acquire"'s timing loop go
+ * on in time across it (discontinuity_count counts them). slot comes from the tag;
+ * under "periodic" and "acquire" it is the beacon period's number from the stream's
+ * start, following time across a gap (a lost burst leaves a gap or an invalid window;
+ * "acquire" messages also carry lock, the acquisition's number); else it counts
+ * windows. A window cut short by the next tag, or of
  * zero/NaN/Inf samples, gives valid = false with finite placeholders. With pfa > 0
  * (always under "acquire") every window is also tested for a tone at that false-alarm
  * probability (tone_detector): a window of noise alone gives valid = false, and the
@@ -112,6 +118,9 @@ public:
     virtual std::string acquire_state() const = 0;
     //! "acquire": the burst period the timing loop tracks (samples); else period.
     virtual double period_estimate() const = 0;
+    //! rx_time tags that disagreed with the sample count (samples lost, or the clock
+    //! set back).
+    virtual std::uint64_t discontinuity_count() const = 0;
 };
 
 } // namespace rfseek

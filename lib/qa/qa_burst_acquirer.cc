@@ -28,6 +28,9 @@ struct beacon {
     std::set<int> silent; // bursts not sent
     double carrier = 0.0; // amplitude of a continuous carrier at carrier_freq
     double carrier_freq = 0.0;
+    std::uint64_t drop_at = 0, drop_len = 0; // samples lost (not pushed) from drop_at
+    bool lie = false; // tell the acquirer `told` instead of the true gap (drop_len)
+    double told = 0.0;
     double start(int k) const { return t0 + k * period; }
 };
 
@@ -59,9 +62,31 @@ run(const beacon& b, burst_acquirer& acq, std::uint64_t total, std::uint64_t see
                 v += std::polar(b.carrier, 2.0 * M_PI * b.carrier_freq * t);
             x[i] = std::complex<float>(v);
         }
-        acq.push(x.data(), x.size(), out);
+        // An overflow: the samples of [drop_at, drop_at + drop_len) never arrive, and
+        // the acquirer is told of the gap before the next sample.
+        const std::uint64_t end = base + x.size();
+        const std::uint64_t g0 = b.drop_at, g1 = b.drop_at + b.drop_len;
+        for (std::uint64_t i = base; i < end;) {
+            if (b.drop_len > 0 && i >= g0 && i < g1) {
+                if (i == g0)
+                    acq.gap(b.lie ? b.told : static_cast<double>(b.drop_len));
+                i = std::min(end, g1);
+                continue;
+            }
+            const std::uint64_t stop = b.drop_len > 0 && i < g0 ? std::min(end, g0) : end;
+            acq.push(x.data() + (i - base), stop - i, out);
+            i = stop;
+        }
     }
     return out;
+}
+
+// A window's start in the samples generated (the pushed index plus the gap before it).
+double generated(const beacon& b, const acquired_window& w)
+{
+    return static_cast<double>(w.start) + (b.drop_len > 0 && w.start >= b.drop_at
+                                               ? static_cast<double>(b.drop_len)
+                                               : 0.0);
 }
 
 burst_acquirer_config config(const beacon& b, double nominal_period)
@@ -244,4 +269,77 @@ TEST(BurstAcquirer, the_period_stays_within_one_percent_whatever_the_timing_erro
     EXPECT_GE(lo, 0.99 * period);
     EXPECT_LE(hi, 1.01 * period);
     EXPECT_GT(out.size(), 300u);
+}
+
+TEST(burst_acquirer, a_gap_keeps_the_phase_and_slots_follow_time)
+{
+    // 4321 samples lost mid-lock (an overflow, 3.4 periods): the bursts inside it are
+    // missing slots, the next burst is measured where it is, and nothing straddles it.
+    beacon b;
+    b.drop_at = 40 * 1280 + 900;
+    b.drop_len = 4321;
+    burst_acquirer acq(100e3, config(b, 1280.0));
+    const auto w = run(b, acq, 120 * 1280, 3);
+    EXPECT_EQ(acq.acquisitions(), 1u);
+    EXPECT_EQ(acq.losses(), 0u);
+    EXPECT_EQ(acq.gaps(), 1u);
+    int after = 0;
+    for (const auto& x : w) {
+        const double g = generated(b, x);
+        const int k = static_cast<int>(std::lround((g - b.t0) / b.period));
+        EXPECT_EQ(x.slot, static_cast<std::uint64_t>(k)) << "at " << g;
+        EXPECT_LT(std::abs(g - std::ceil(b.start(k))), 12.0) << "slot " << x.slot;
+        // Nothing before the gap reaches into it; nothing after starts inside it.
+        if (x.start < b.drop_at)
+            EXPECT_LE(x.start + b.n, b.drop_at);
+        if (x.start >= b.drop_at && after++ == 0) {
+            EXPECT_TRUE(x.detection.detected) << "the first burst after the gap";
+            EXPECT_EQ(x.slot,
+                      static_cast<std::uint64_t>(
+                          std::ceil((b.drop_at + b.drop_len - b.t0) / b.period)));
+        }
+    }
+    EXPECT_GT(after, 70);
+}
+
+TEST(burst_acquirer, a_gap_told_wrong_is_searched_again)
+{
+    // The count says half a period less than was lost: the phase is wrong, the next two
+    // predicted bursts are not there, and the beacon is found again.
+    beacon b;
+    b.drop_at = 30 * 1280 + 100;
+    b.drop_len = 3000;
+    b.lie = true;
+    b.told = 3000 - 640;
+    burst_acquirer acq(100e3, config(b, 1280.0));
+    const auto w = run(b, acq, 90 * 1280, 4);
+    EXPECT_EQ(acq.losses(), 1u);
+    EXPECT_EQ(acq.acquisitions(), 2u);
+    std::size_t second = 0;
+    for (const auto& x : w) {
+        if (x.lock != 2)
+            continue;
+        ++second;
+        const double g = generated(b, x);
+        const int k = static_cast<int>(std::lround((g - b.t0) / b.period));
+        EXPECT_LT(std::abs(g - std::ceil(b.start(k))), 12.0);
+    }
+    EXPECT_GT(second, 40u);
+}
+
+TEST(burst_acquirer, a_clock_set_back_or_absurd_gap_ends_the_lock)
+{
+    for (const double told : { -500.0, std::nan(""), 1e30 }) {
+        beacon b;
+        b.drop_at = 20 * 1280;
+        b.drop_len = 1; // (one sample lost; the acquirer is told otherwise)
+        b.lie = true;
+        b.told = told;
+        burst_acquirer acq(100e3, config(b, 1280.0));
+        const auto w = run(b, acq, 60 * 1280, 6);
+        EXPECT_EQ(acq.losses(), 1u) << told;
+        EXPECT_EQ(acq.acquisitions(), 2u) << told;
+        for (std::size_t i = 1; i < w.size(); ++i)
+            EXPECT_GT(w[i].slot, w[i - 1].slot);
+    }
 }

@@ -4,7 +4,7 @@
  */
 
 /* BINDTOOL_HEADER_FILE(burst_acquirer.h) */
-/* BINDTOOL_HEADER_FILE_HASH(3969e31fe68479ca9eefa45571532edf) */
+/* BINDTOOL_HEADER_FILE_HASH(61015a79e85c300604c32298fad5c6fe) */
 
 #include <gr-rfseek/burst_acquirer.h>
 #include <pybind11/complex.h>
@@ -63,6 +63,8 @@ void bind_burst_acquirer(py::module& m)
         .def_readonly("timing_error",
                       &acquired_window::timing_error,
                       "matched-filter start - predicted start (samples)")
+        .def_readonly(
+            "lock", &acquired_window::lock, "the acquisition it belongs to (1, 2, ...)")
         .def_property_readonly(
             "samples",
             [](const acquired_window& w) {
@@ -97,6 +99,12 @@ void bind_burst_acquirer(py::module& m)
         .def("acquisitions", &burst_acquirer::acquisitions, "Locks acquired so far.")
         .def("losses", &burst_acquirer::losses, "Locks lost so far.")
         .def("samples_seen", &burst_acquirer::samples_seen, "Samples pushed so far.")
+        .def("gaps", &burst_acquirer::gaps, "Gaps told so far.")
+        .def("gap",
+             &burst_acquirer::gap,
+             py::arg("samples"),
+             "Samples were lost after those pushed so far (an overflow): the lock goes "
+             "on in time across the gap and must find one of the next two bursts.")
         .def("set_pfa", &burst_acquirer::set_pfa, py::arg("pfa"), "Change pfa.")
         .def("set_band",
              &burst_acquirer::set_band,

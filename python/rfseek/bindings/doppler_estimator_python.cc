@@ -4,7 +4,7 @@
  */
 
 /* BINDTOOL_HEADER_FILE(doppler_estimator.h) */
-/* BINDTOOL_HEADER_FILE_HASH(de0df5cc304eb9c8a35009e687ac76ba) */
+/* BINDTOOL_HEADER_FILE_HASH(66f6922f4343b496e2ec356f5cc58eaa) */
 
 #include <gr-rfseek/doppler_estimator.h>
 #include <pybind11/pybind11.h>
@@ -157,8 +157,11 @@ void bind_doppler_estimator(py::module& m)
         .def("acquire_state",
              &doppler_estimator::acquire_state,
              "'acquire': 'search', 'confirm' or 'locked'; other alignments: ''.")
-        .def(
-            "period_estimate",
-            &doppler_estimator::period_estimate,
-            "'acquire': the burst period the timing loop tracks (samples); else period.");
+        .def("period_estimate",
+             &doppler_estimator::period_estimate,
+             "'acquire': the burst period the timing loop tracks (samples); else period.")
+        .def("discontinuity_count",
+             &doppler_estimator::discontinuity_count,
+             "rx_time tags that disagreed with the sample count (samples lost, or the "
+             "clock set back).");
 }

@@ -1,0 +1,113 @@
+#!/usr/bin/python3
+#
+# Copyright 2026 gr-rfseek authors.
+# SPDX-License-Identifier: GPL-3.0-or-later
+#
+"""doppler_estimator under the faults a real receiver brings, on a pulsed beacon made by
+GNU Radio's own blocks at -10 dB per-sample SNR, timing unknown (rfseek.faults):
+an overflow's lost samples and the rx_time tag after them, a clock that jumps; windows
+timed by the tag in force at their first sample, slots that follow time across the gap,
+and no window valid across it."""
+
+import numpy as np
+import pmt
+from gnuradio import blocks, gr, gr_unittest
+from gnuradio import rfseek
+from gnuradio.rfseek import faults
+
+FS, N, PERIOD = faults.FS, faults.N, faults.PERIOD
+
+
+def by_offset(meas, at):
+    return [m for m in meas if m["offset"] < at], [m for m in meas if m["offset"] >= at]
+
+
+class qa_faults(gr_unittest.TestCase):
+
+    def check_overflow(self, seed, at, lost, chunk=None):
+        s = faults.overflow(faults.beacon_stream(seed, -10.0, 8.0, 20.0), at, lost)
+        est, meas = faults.measure(s, chunk=chunk)
+        r = faults.score(meas, s)
+        self.assertEqual(est.discontinuity_count(), 1)
+        # Every window timed by the tag in force at its first sample (the target is
+        # 0.1 ms; the clock itself is exact to the float).
+        self.assertLess(r["max_clock_err_s"], 1e-6)
+        # One lock throughout; no window valid off a burst or across the gap.
+        self.assertEqual({m["lock"] for m in meas}, {1})
+        self.assertEqual(r["false"], 0)
+        self.assertGreaterEqual(r["found"], 0.99 * r["sent"])
+        self.assertLessEqual(r["rms_over_crb"], 1.2)
+        before, after = by_offset(meas, at)
+        self.assertTrue(all(m["offset"] + N <= at for m in before))
+        # Locked again at once: one of the first two bursts after the gap is measured.
+        after_gap = [k for k in range(len(s.starts)) if s.starts[k] >= at]
+        first = min(k for k in r["hit"] if k in after_gap)
+        self.assertLessEqual(first - after_gap[0], 1)
+        # Slots follow time: the beacon periods between two windows, whatever was lost.
+        a, b = before[-1], after[0]
+        self.assertEqual(b["slot"] - a["slot"], round((b["time"] - a["time"]) * FS / PERIOD))
+        return r
+
+    def test_an_overflow_of_a_few_thousand_samples(self):
+        for seed, at, lost in ((31, 400_123, 3000), (32, 351_000, 4999)):
+            self.check_overflow(seed, at, lost)
+
+    def test_an_overflow_in_small_chunks(self):
+        # The tag in force is found whatever the work() calls' boundaries.
+        self.check_overflow(33, 300_007, 2500, chunk=997)
+
+    def test_a_clock_that_jumps_by_7_s(self):
+        # Before the fix, the windows before the jump read 7 s late.
+        s = faults.overflow(faults.beacon_stream(34, -10.0, 12.0, 20.0), 300_000, 700_000)
+        est, meas = faults.measure(s)
+        r = faults.score(meas, s)
+        self.assertLess(r["max_clock_err_s"], 1e-6)
+        self.assertEqual(r["false"], 0)
+        self.assertGreaterEqual(r["found"], 0.99 * r["sent"])
+        before, after = by_offset(meas, 300_000)
+        self.assertEqual(after[0]["slot"] - before[-1]["slot"],
+                         round((after[0]["time"] - before[-1]["time"]) * FS / PERIOD))
+
+    def run_tagged(self, x, tags, **kw):
+        tb = gr.top_block()
+        src = blocks.vector_source_c(x.tolist(), False, 1, tags)
+        est = rfseek.doppler_estimator(FS, N, 4096, **kw)
+        dbg = blocks.message_debug()
+        tb.connect(src, est)
+        tb.msg_connect(est, "meas", dbg, "store")
+        tb.run()
+        return est, [pmt.to_python(dbg.get_message(i)) for i in range(dbg.num_messages())]
+
+    def test_periodic_windows_follow_time_across_a_gap(self):
+        # A continuous tone, windows every 1500 samples; 2600 samples lost at 9500.
+        x = np.exp(2j * np.pi * 1234.5 * np.arange(30_000) / FS).astype(np.complex64)
+        cut = np.concatenate([x[:9500], x[12_100:]])
+        tags = [faults._tag(0, "rx_time", (100, 0.5)),
+                faults._tag(9500, "rx_time", (100, 0.5 + 12_100 / FS))]
+        est, meas = self.run_tagged(cut, tags, alignment="periodic", period=1500)
+        self.assertEqual(est.discontinuity_count(), 1)
+        for m in meas:
+            t = m["time"] - 100.5
+            # Windows start on the period in the stream's time, numbered by it.
+            self.assertAlmostEqual(t * FS, round(t * FS / 1500) * 1500, places=3)
+            self.assertEqual(m["slot"], round(t * FS / 1500))
+            straddles = m["offset"] < 9500 < m["offset"] + N
+            self.assertEqual(m["valid"], not straddles)
+        self.assertEqual(sum(not m["valid"] for m in meas), 1)  # the one at 9000
+        self.assertEqual([m["slot"] for m in meas if m["valid"]][6:8], [9, 10])
+
+    def test_a_tagged_window_straddling_a_gap_is_invalid(self):
+        x = np.exp(2j * np.pi * 500.0 * np.arange(5000) / FS).astype(np.complex64)
+        tags = [faults._tag(0, "rx_time", (7, 0.0)),
+                faults._tag(100, "rfseek_beacon", {"slot": 1}),
+                faults._tag(600, "rx_time", (7, 0.5)),  # 0.494 s lost
+                faults._tag(2000, "rfseek_beacon", {"slot": 2})]
+        est, meas = self.run_tagged(x, tags)
+        self.assertEqual([(m["slot"], m["valid"]) for m in meas], [(1, False), (2, True)])
+        self.assertAlmostEqual(meas[0]["time"], 7.001, places=9)
+        self.assertAlmostEqual(meas[1]["time"], 7.514, places=9)
+        self.assertEqual(est.truncated_count(), 1)
+
+
+if __name__ == "__main__":
+    gr_unittest.run(qa_faults)

@@ -30,7 +30,7 @@ status=0
 mkdir -p "$build/findings" "$build/corpus"
 summary=""
 for f in fuzz_channel_source_cmd fuzz_seeking_controller fuzz_tone_estimator \
-    fuzz_burst_detector fuzz_burst_acquirer fuzz_mavlink_parser; do
+    fuzz_burst_detector fuzz_burst_acquirer fuzz_estimator_tags fuzz_mavlink_parser; do
     corpus="$build/corpus/$f"
     mkdir -p "$corpus"
     [ -d "$here/lib/fuzz/corpus/$f" ] && cp -n "$here/lib/fuzz/corpus/$f"/* "$corpus/" 2>/dev/null || true

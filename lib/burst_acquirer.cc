@@ -6,6 +6,7 @@
  * burst_acquirer: search, confirm, lock (burst_acquirer.h).
  */
 
+#include "carrier_notch.h"
 #include <gr-rfseek/burst_acquirer.h>
 #include <algorithm>
 #include <cmath>
@@ -38,6 +39,11 @@ burst_acquirer_config checked(burst_acquirer_config c)
     if (!(c.loop_beta >= 0.0 && c.loop_beta <= c.loop_alpha))
         bad("loop_beta = " + std::to_string(c.loop_beta) +
             ": must be in [0, loop_alpha]");
+    if (c.track_bins < 0 || c.track_bins > c.window_len / 2)
+        bad("track_bins = " + std::to_string(c.track_bins) +
+            ": must be in [0, window_len / 2] (0: the whole band)");
+    if (c.max_carriers < 0 || c.max_carriers > 16)
+        bad("max_carriers = " + std::to_string(c.max_carriers) + ": must be in [0, 16]");
     return c;
 }
 } // namespace
@@ -51,8 +57,95 @@ burst_acquirer::burst_acquirer(double samp_rate_hz, const burst_acquirer_config&
                               : static_cast<int>(std::min(
                                     0.25 * cfg.window_len,
                                     std::floor(0.5 * (cfg.period - cfg.window_len))))),
-      d_period(cfg.period)
+      d_period(cfg.period),
+      d_notch(std::make_shared<carrier_notch>(
+          samp_rate_hz, static_cast<std::size_t>(std::max(cfg.max_carriers, 1)))),
+      d_scratch(static_cast<std::size_t>(cfg.window_len))
 {
+}
+
+std::vector<double> burst_acquirer::carriers() const { return d_notch->freqs(); }
+
+bool burst_acquirer::tracking() const
+{
+    return d_state == state::locked && d_cfg.track_bins > 0 && d_have_track &&
+           d_track_misses < 3;
+}
+
+double burst_acquirer::tracked_freq() const
+{
+    return tracking() ? d_track_freq : std::nan("");
+}
+
+tone_detection burst_acquirer::test_at(std::uint64_t start, bool track)
+{
+    const auto* x = at(start);
+    std::copy(x, x + d_cfg.window_len, d_scratch.begin());
+    std::vector<double> share;
+    d_notch->apply(d_scratch.data(), d_scratch.size(), &share);
+    equalize_blocks(d_scratch.data(),
+                    d_scratch.size(),
+                    std::max<std::size_t>(8, d_scratch.size() / 20));
+    d_scratch_start = start;
+    d_scratch_lo = d_scratch_hi = 0.0;
+    if (d_state == state::search) {
+        ++d_span_windows;
+        d_carrier_seen.resize(share.size(), 0);
+        for (std::size_t c = 0; c < share.size(); ++c)
+            d_carrier_seen[c] += share[c] > d_det.threshold() ? 1 : 0;
+    }
+    if (!track)
+        return d_det.test(d_scratch.data());
+    // Around the tracked tone, within the configured band.
+    const double bin = d_fs / d_cfg.window_len;
+    const bool whole = d_cfg.min_freq_hz == d_cfg.max_freq_hz;
+    const double lo = std::max(d_track_freq - d_cfg.track_bins * bin,
+                               whole ? -0.5 * d_fs : d_cfg.min_freq_hz);
+    const double hi = std::min(d_track_freq + d_cfg.track_bins * bin,
+                               whole ? 0.5 * d_fs : d_cfg.max_freq_hz);
+    if (hi - lo < 4.0 * bin)
+        return d_det.test(d_scratch.data());
+    if (!d_track) {
+        d_track =
+            std::make_unique<tone_detector>(d_fs, d_cfg.window_len, d_cfg.pfa, lo, hi);
+        d_track->set_exclusions(d_notch->freqs(), 2.0 * bin);
+    } else if (std::abs(lo - d_track_lo) > 0.25 * bin ||
+               std::abs(hi - d_track_hi) > 0.25 * bin) {
+        d_track->set_band(lo, hi);
+    } else {
+        d_scratch_lo = lo;
+        d_scratch_hi = hi;
+        return d_track->test(d_scratch.data());
+    }
+    d_track_lo = lo;
+    d_track_hi = hi;
+    d_scratch_lo = lo;
+    d_scratch_hi = hi;
+    return d_track->test(d_scratch.data());
+}
+
+void burst_acquirer::learn_carriers(const trial* best)
+{
+    if (d_cfg.max_carriers <= 0)
+        return;
+    const double bin = d_fs / d_cfg.window_len;
+    bool changed = false;
+    // Forget the carriers present in fewer than half of this period's windows.
+    for (std::size_t c = d_notch->freqs().size(); c-- > 0;)
+        if (c < d_carrier_seen.size() && 2 * d_carrier_seen[c] < d_span_windows) {
+            d_notch->remove(c);
+            changed = true;
+        }
+    // The strongest detection was continuous: a carrier, removed from now on.
+    if (best && d_notch->add(best->det.freq_hz, 2.0 * bin))
+        changed = true;
+    d_carrier_seen.assign(d_notch->freqs().size(), 0);
+    d_span_windows = 0;
+    if (changed) {
+        d_det.set_exclusions(d_notch->freqs(), 2.0 * bin);
+        if (d_track)
+            d_track->set_exclusions(d_notch->freqs(), 2.0 * bin);
+    }
 }
 
 std::string burst_acquirer::state_name() const
@@ -71,6 +164,7 @@ void burst_acquirer::set_pfa(double pfa)
 {
     d_det.set_pfa(pfa);
     d_cfg.pfa = pfa;
+    d_track.reset();
 }
 
 void burst_acquirer::set_band(double min_freq_hz, double max_freq_hz)
@@ -84,6 +178,8 @@ void burst_acquirer::set_samp_rate(double samp_rate_hz)
 {
     d_det.set_samp_rate(samp_rate_hz);
     d_fs = samp_rate_hz;
+    d_notch->set_samp_rate(samp_rate_hz);
+    d_track.reset();
 }
 
 bool burst_acquirer::have(std::uint64_t from, std::uint64_t to) const
@@ -113,7 +209,10 @@ std::vector<double> burst_acquirer::matched(std::uint64_t around, double freq_hz
     const double w = -2.0 * M_PI * freq_hz / d_fs;
     const std::size_t len = hi - lo + n;
     std::vector<std::complex<double>> y(len);
-    const auto* x = at(lo);
+    // The carriers removed from the stretch first (their sidelobes would ripple the
+    // matched filter).
+    std::vector<std::complex<float>> x(at(lo), at(lo) + len);
+    d_notch->apply(x.data(), x.size());
     for (std::size_t i = 0; i < len; ++i) {
         const std::complex<double> v(x[i]);
         y[i] = std::isfinite(v.real()) && std::isfinite(v.imag())
@@ -153,8 +252,15 @@ acquired_window burst_acquirer::make_window(std::uint64_t start,
     w.detection = d;
     w.timing_error = err;
     w.lock = d_acquisitions;
-    const auto* x = at(start);
-    w.samples.assign(x, x + d_cfg.window_len);
+    if (d_scratch_start == start) {
+        w.samples = d_scratch;
+        w.min_freq_hz = d_scratch_lo;
+        w.max_freq_hz = d_scratch_hi;
+    } else {
+        const auto* x = at(start);
+        w.samples.assign(x, x + d_cfg.window_len);
+        d_notch->apply(w.samples.data(), w.samples.size());
+    }
     return w;
 }
 
@@ -184,7 +290,7 @@ bool burst_acquirer::step_search()
         d_pos = d_span_start = d_base;
     if (!have(d_pos, d_pos + n))
         return false;
-    d_span.push_back({ d_pos, d_det.test(at(d_pos)) });
+    d_span.push_back({ d_pos, test_at(d_pos, false) });
     d_pos += d_hop;
     if (static_cast<double>(d_pos - d_span_start) < d_cfg.period)
         return true;
@@ -192,6 +298,7 @@ bool burst_acquirer::step_search()
     for (const auto& t : d_span)
         if (t.det.detected && (!best || t.det.g > best->det.g))
             best = &t;
+    learn_carriers(best && !pulsed(*best) ? best : nullptr);
     if (best && pulsed(*best)) {
         d_state = state::confirm;
         d_cand = best->pos;
@@ -212,7 +319,7 @@ bool burst_acquirer::step_confirm(std::vector<acquired_window>& out)
         if (!have(std::max(d_base, d_cand >= m ? d_cand - m : 0), d_cand + n + m))
             return false;
         d_cand = static_cast<std::uint64_t>(refine(d_cand, d_cand_det.freq_hz));
-        d_cand_det = d_det.test(at(d_cand));
+        d_cand_det = test_at(d_cand, false);
         d_pred = static_cast<double>(d_cand) + d_period;
         d_refined = true;
         return true;
@@ -220,7 +327,7 @@ bool burst_acquirer::step_confirm(std::vector<acquired_window>& out)
     const auto p = static_cast<std::uint64_t>(std::llround(d_pred));
     if (!have(p - m, p + n + m))
         return false;
-    const tone_detection det = d_det.test(at(p));
+    const tone_detection det = test_at(p, false);
     if (!det.detected) {
         if (++d_tries >= 2) { // not confirmed: search on from here
             d_state = state::search;
@@ -256,8 +363,14 @@ bool burst_acquirer::step_confirm(std::vector<acquired_window>& out)
     }
     const std::uint64_t slot1 = slot0 + 1 + static_cast<std::uint64_t>(d_tries);
     ++d_acquisitions;
-    out.push_back(make_window(d_cand, d_det.test(at(d_cand)), 0.0, slot0));
-    out.push_back(make_window(p2, d_det.test(at(p2)), err, slot1));
+    d_have_track = false; // (the first two are measured over the whole band)
+    const tone_detection d1 = test_at(d_cand, false);
+    out.push_back(make_window(d_cand, d1, 0.0, slot0));
+    const tone_detection d2 = test_at(p2, false);
+    out.push_back(make_window(p2, d2, err, slot1));
+    d_have_track = d2.detected || d1.detected;
+    d_track_freq = d2.detected ? d2.freq_hz : d1.freq_hz;
+    d_track_misses = 0;
     d_state = state::locked;
     d_hits = 2;
     d_misses = 0;
@@ -273,7 +386,7 @@ bool burst_acquirer::step_locked(std::vector<acquired_window>& out)
     const auto p = static_cast<std::uint64_t>(std::llround(std::max(d_next, 0.0)));
     if (!have(p >= m ? p - m : 0, p + n + m) || p < d_base)
         return false;
-    const tone_detection det = d_det.test(at(p));
+    const tone_detection det = test_at(p, tracking());
     double err = 0.0;
     if (det.detected) {
         err = refine(p, det.freq_hz) - d_next;
@@ -292,6 +405,14 @@ bool burst_acquirer::step_locked(std::vector<acquired_window>& out)
         d_next += d_period;
     }
     out.push_back(make_window(p, det, err, d_slot++));
+    // Follow the tone; after 3 misses in a row search the whole band again.
+    if (det.detected) {
+        d_have_track = true;
+        d_track_freq = det.freq_hz;
+        d_track_misses = 0;
+    } else {
+        ++d_track_misses;
+    }
     // After a gap the phase comes from the receiver's clock: unless one of the next two
     // bursts is where it says, the count was wrong and the beacon must be found again.
     const bool lost_at_gap = d_recheck > 0 && !det.detected && --d_recheck == 0;

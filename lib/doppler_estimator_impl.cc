@@ -309,13 +309,24 @@ void doppler_estimator_impl::acquire(const gr_complex* in, std::uint64_t count)
         return;
     std::vector<acquired_window> done;
     d_acq->push(in, static_cast<std::size_t>(count), done);
-    for (const auto& w : done)
-        publish(w.start,
-                d_est.estimate(w.samples.data()),
-                pmt::PMT_NIL,
-                w.slot,
-                &w.detection,
-                &w);
+    for (const auto& w : done) {
+        // Measured in the band the window was found in (around the tracked tone).
+        const bool narrowed = w.min_freq_hz != w.max_freq_hz;
+        const double lo = d_est.min_freq_hz(), hi = d_est.max_freq_hz();
+        bool banded = false;
+        if (narrowed) {
+            try {
+                d_est.set_band(w.min_freq_hz, w.max_freq_hz);
+                banded = true;
+            } catch (const std::invalid_argument&) {
+                // (too narrow for the FFT: measured over the configured band)
+            }
+        }
+        const tone_estimate e = d_est.estimate(w.samples.data());
+        if (banded)
+            d_est.set_band(lo, hi);
+        publish(w.start, e, pmt::PMT_NIL, w.slot, &w.detection, &w);
+    }
 }
 
 void doppler_estimator_impl::forget_old_anchors()
@@ -561,6 +572,12 @@ std::uint64_t doppler_estimator_impl::discontinuity_count() const
 {
     gr::thread::scoped_lock lock(setlock());
     return d_clock.discontinuities();
+}
+
+std::vector<double> doppler_estimator_impl::carriers() const
+{
+    gr::thread::scoped_lock lock(setlock());
+    return d_acq ? d_acq->carriers() : std::vector<double>();
 }
 
 double doppler_estimator_impl::period_estimate() const

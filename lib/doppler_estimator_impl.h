@@ -65,6 +65,7 @@ public:
     std::string acquire_state() const override;
     double period_estimate() const override;
     std::uint64_t discontinuity_count() const override;
+    std::vector<double> carriers() const override;
 
 private:
     gr::thread::mutex& setlock() const

@@ -104,13 +104,25 @@ void tone_detector::set_band(double min_freq_hz, double max_freq_hz)
     const int nfft = d_impl->nfft;
     std::vector<int> bins;
     int even = 0, odd = 0;
-    for (int m = 0; m < nfft; ++m) {
-        const int k = m <= nfft / 2 ? m : m - nfft; // signed index, f = k fs / nfft
-        const double f = k * d_fs / nfft;
-        if (!whole && (f < min_freq_hz || f > max_freq_hz))
-            continue;
-        bins.push_back(m);
-        (m % 2 == 0 ? even : odd) += 1;
+    for (int pass = 0; pass < 2; ++pass) {
+        // The second pass, only if the exclusions left too little, ignores them.
+        const bool exclude = pass == 0 && !d_excl.empty();
+        bins.clear();
+        even = odd = 0;
+        for (int m = 0; m < nfft; ++m) {
+            const int k = m <= nfft / 2 ? m : m - nfft; // signed index, f = k fs / nfft
+            const double f = k * d_fs / nfft;
+            if (!whole && (f < min_freq_hz || f > max_freq_hz))
+                continue;
+            if (exclude && std::any_of(d_excl.begin(), d_excl.end(), [&](double e) {
+                    return std::abs(std::remainder(f - e, d_fs)) <= d_excl_hw;
+                }))
+                continue;
+            bins.push_back(m);
+            (m % 2 == 0 ? even : odd) += 1;
+        }
+        if (std::max(even, odd) >= 2 || d_excl.empty())
+            break;
     }
     if (std::max(even, odd) < 2)
         throw std::invalid_argument("tone_detector: search band [min_freq, max_freq] "
@@ -121,6 +133,20 @@ void tone_detector::set_band(double min_freq_hz, double max_freq_hz)
     d_fmin = min_freq_hz;
     d_fmax = max_freq_hz;
     update_threshold();
+}
+
+void tone_detector::set_exclusions(const std::vector<double>& freqs_hz,
+                                   double half_width_hz)
+{
+    std::vector<double> keep;
+    for (const double f : freqs_hz)
+        if (std::isfinite(f))
+            keep.push_back(f);
+    if (keep == d_excl && half_width_hz == d_excl_hw)
+        return;
+    d_excl = std::move(keep);
+    d_excl_hw = std::isfinite(half_width_hz) ? std::max(half_width_hz, 0.0) : 0.0;
+    set_band(d_fmin, d_fmax);
 }
 
 void tone_detector::set_samp_rate(double samp_rate_hz)

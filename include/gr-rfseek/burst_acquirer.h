@@ -15,11 +15,14 @@
 #include <gr-rfseek/tone_detector.h>
 #include <complex>
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
 namespace gr {
 namespace rfseek {
+
+class carrier_notch;
 
 struct RFSEEK_API burst_acquirer_config {
     int window_len = 1000;  //!< N, the burst length in samples (>= 16)
@@ -31,6 +34,9 @@ struct RFSEEK_API burst_acquirer_config {
     int max_misses = 100; //!< undetected bursts in a row before searching again
     double loop_alpha = 0.1;  //!< timing loop: steady-state phase gain (0, 1]
     double loop_beta = 0.005; //!< timing loop: period gain (0, loop_alpha]
+    int track_bins = 10;      //!< locked: search +- this many bins (fs / N) around the
+                              //!< tracked tone (0: the whole band, always)
+    int max_carriers = 4;     //!< continuous carriers removed (0: none, only rejected)
 };
 
 //! One beacon window, measured where the timing loop puts the burst.
@@ -40,7 +46,11 @@ struct RFSEEK_API acquired_window {
     tone_detection detection;  //!< the detection test of this window
     double timing_error = 0.0; //!< matched-filter start - predicted start (samples)
     std::uint64_t lock = 0;    //!< the acquisition it belongs to (1, 2, ...)
-    std::vector<std::complex<float>> samples; //!< the window_len samples from start
+    //! The band its test searched when narrowed around the tracked tone (Hz; equal
+    //! values: the configured band).
+    double min_freq_hz = 0.0, max_freq_hz = 0.0;
+    //! the window_len samples from start, continuous carriers removed
+    std::vector<std::complex<float>> samples;
 };
 
 /*!
@@ -51,6 +61,12 @@ struct RFSEEK_API acquired_window {
  * bin's share of the energy, not wideband power) over one period; the strongest
  * detection is a candidate unless the same frequency is also detected in the windows
  * clear of it (a continuous carrier, e.g. the receiver's DC leak, is not a burst).
+ * Carriers: a frequency detected in most windows of a search period is a continuous
+ * carrier (an interferer); up to max_carriers of them are removed from every window and
+ * every matched filter before they are used (carrier_notch: refined on the samples and
+ * projected out) and their bins are left out of the tests, so that a carrier 20 dB
+ * above the beacon neither captures the search nor buries the beacon. A carrier that is
+ * no longer there in half a search period's windows is forgotten.
  * Timing: the burst start is the maximum over +-margin samples of the matched filter
  * |sum_{n=s}^{s+N-1} x_n exp(-j 2 pi f n / fs)| at the detected frequency (the maximum-
  * likelihood start of a tone burst of known length). Confirm: the candidate is locked
@@ -61,7 +77,9 @@ struct RFSEEK_API acquired_window {
  * 1/n at first, then loop_alpha / loop_beta), which follows a clock offset between
  * beacon and receiver; the period is held within 1 % of the nominal. Undetected
  * bursts are emitted too (detection.detected false) and the loop coasts; after
- * max_misses in a row it searches again. slot is the period number from the stream's
+ * max_misses in a row it searches again. Locked, the test searches only +-track_bins
+ * bins around the tone it last detected (the beacon's frequency moves slowly) and the
+ * whole band again after 3 misses in a row. slot is the period number from the stream's
  * start, so a burst lost in a fade or a search leaves a gap.
  * Discontinuity: gap() says that samples were lost between the samples pushed so far
  * and the next (an overflow, told by the receiver's rx_time). The bursts go on in time:
@@ -101,6 +119,10 @@ public:
     void gap(double samples);
     const burst_acquirer_config& config() const { return d_cfg; }
     const tone_detector& detector() const { return d_det; }
+    //! The continuous carriers removed (Hz).
+    std::vector<double> carriers() const;
+    //! Locked and searching around the tracked tone: its frequency (Hz); else NaN.
+    double tracked_freq() const;
 
     void set_pfa(double pfa);
     void set_band(double min_freq_hz, double max_freq_hz);
@@ -122,6 +144,9 @@ private:
     bool step_confirm(std::vector<acquired_window>& out);
     bool step_locked(std::vector<acquired_window>& out);
     bool pulsed(const trial& cand) const;
+    tone_detection test_at(std::uint64_t start, bool track);
+    void learn_carriers(const trial* best);
+    bool tracking() const;
     acquired_window make_window(std::uint64_t start,
                                 const tone_detection& d,
                                 double err,
@@ -156,6 +181,20 @@ private:
     double d_shift = 0.0; // samples lost in gaps so far (the stream's time in samples
                           // is the sample index + d_shift)
     int d_recheck = 0;    // after a gap: predicted bursts left to find one of
+    // continuous carriers (carrier_notch, internal), and their presence in the windows
+    // of the current search period
+    std::shared_ptr<carrier_notch> d_notch;
+    std::vector<int> d_carrier_seen;
+    int d_span_windows = 0;
+    // the window prepared last (carriers removed) and its start
+    std::vector<std::complex<float>> d_scratch;
+    std::uint64_t d_scratch_start = ~std::uint64_t(0);
+    double d_scratch_lo = 0.0, d_scratch_hi = 0.0; // the band it was tested in
+    // locked: the test around the tracked tone
+    std::unique_ptr<tone_detector> d_track;
+    double d_track_freq = 0.0, d_track_lo = 0.0, d_track_hi = 0.0;
+    bool d_have_track = false;
+    int d_track_misses = 0;
 };
 
 } // namespace rfseek

@@ -14,6 +14,7 @@
 #include <gr-rfseek/api.h>
 #include <cstdint>
 #include <string>
+#include <vector>
 
 namespace gr {
 namespace rfseek {
@@ -31,7 +32,9 @@ namespace rfseek {
  * burst_detector), or where a timing loop locked to the bursts' period puts them
  * (alignment "acquire": a pulsed beacon of window_len samples every period samples,
  * timing unknown, found by narrowband detection at the estimator's own sensitivity;
- * see burst_acquirer).
+ * continuous carriers such as an interferer are found, removed and never reported;
+ * locked, the search follows the beacon's tone, +-10 bins around it; see
+ * burst_acquirer).
  * Each window gives one message on "meas": {slot, time, offset, freq_hz, snr_db,
  * power_db, noise_power_db, valid} plus every field of the aligning tag's dict (heading,
  * ...). time is the sample clock at the window's first sample, from the rx_time/rx_rate
@@ -121,6 +124,8 @@ public:
     //! rx_time tags that disagreed with the sample count (samples lost, or the clock
     //! set back).
     virtual std::uint64_t discontinuity_count() const = 0;
+    //! "acquire": the continuous carriers (interferers) found and removed, Hz.
+    virtual std::vector<double> carriers() const = 0;
 };
 
 } // namespace rfseek

@@ -13,6 +13,7 @@
 #include <gr-rfseek/api.h>
 #include <complex>
 #include <memory>
+#include <vector>
 
 namespace gr {
 namespace rfseek {
@@ -81,6 +82,12 @@ public:
     //! A new sample rate (> 0; the band in Hz is kept and must still fit). On a bad
     //! value nothing changes and std::invalid_argument names it.
     void set_samp_rate(double samp_rate_hz);
+    /*!
+     * Bins within half_width_hz of any of freqs_hz are left out of the search (B and
+     * the threshold follow): the places of carriers removed before the test. If they
+     * would leave fewer than 2 bins, the band is searched whole.
+     */
+    void set_exclusions(const std::vector<double>& freqs_hz, double half_width_hz);
 
     //! P1(x): the exact probability that the largest of B of N uniform-spacing shares
     //! exceeds x (one set of bins; noise only).
@@ -96,6 +103,8 @@ private:
     int d_n;
     double d_pfa = 1e-3;
     double d_fmin = 0.0, d_fmax = 0.0;
+    std::vector<double> d_excl;
+    double d_excl_hw = 0.0;
     int d_bins = 0;
     double d_threshold = 1.0;
 };

@@ -4,7 +4,8 @@
  *
  * libFuzzer harness: burst_acquirer (doppler_estimator's "acquire" alignment) on
  * arbitrary sample streams (NaN, inf and huge values included) in arbitrary chunks, with
- * arbitrary valid settings. Every window it returns must lie inside what was pushed and
+ * arbitrary valid settings, and gaps of any size (NaN, negative, huge) told between
+ * chunks. Every window it returns must lie inside what was pushed and
  * hold window_len samples, slots must increase, and its numbers (timing error, detection
  * statistic and margin, the tracked period) must stay finite.
  */
@@ -26,6 +27,19 @@ namespace {
     std::fprintf(stderr, "%s: %g %g\n", what, a, b);
     std::abort();
 }
+double rfseek_gap(FuzzedDataProvider& fdp)
+{
+    switch (fdp.ConsumeIntegralInRange<int>(0, 3)) {
+    case 0:
+        return std::nan("");
+    case 1:
+        return fdp.ConsumeFloatingPointInRange<double>(-1e6, 1e6);
+    case 2:
+        return fdp.ConsumeFloatingPoint<double>();
+    default:
+        return fdp.ConsumeFloatingPointInRange<double>(0.0, 5000.0);
+    }
+}
 } // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size)
@@ -45,6 +59,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     c.max_misses = fdp.ConsumeIntegralInRange<int>(1, 5);
     c.loop_alpha = fdp.ConsumeFloatingPointInRange<double>(0.01, 1.0);
     c.loop_beta = fdp.ConsumeFloatingPointInRange<double>(0.0, c.loop_alpha);
+    c.track_bins = fdp.ConsumeIntegralInRange<int>(0, c.window_len / 2);
+    c.max_carriers = fdp.ConsumeIntegralInRange<int>(0, 16);
     std::unique_ptr<gr::rfseek::burst_acquirer> made;
     try {
         made = std::make_unique<gr::rfseek::burst_acquirer>(1.0, c); // cycles per sample
@@ -57,6 +73,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     bool have_slot = false;
     std::uint64_t last_slot = 0;
     while (fdp.remaining_bytes() > 0) {
+        if (fdp.ConsumeIntegralInRange<int>(0, 15) == 0) // an overflow's gap, any size
+            acq.gap(fdp.ConsumeBool() ? rfseek_gap(fdp) : 0.0);
         const std::size_t n = fdp.ConsumeIntegralInRange<std::size_t>(0, 300);
         std::vector<std::complex<float>> x(n);
         const std::vector<std::uint8_t> raw =

@@ -343,3 +343,62 @@ TEST(burst_acquirer, a_clock_set_back_or_absurd_gap_ends_the_lock)
             EXPECT_GT(w[i].slot, w[i - 1].slot);
     }
 }
+
+TEST(burst_acquirer, a_carrier_20_dB_above_the_beacon_is_removed_and_the_beacon_found)
+{
+    // The carrier 20 dB above the beacon and 25 bins (of fs / N) away, continuous.
+    // Without removal it takes every window's largest bin (and the test's energy); the
+    // beacon is never found.
+    for (const int max_carriers : { 4, 0 }) {
+        beacon b;
+        b.snr_db = -3.0;
+        b.carrier = std::sqrt(std::pow(10.0, (b.snr_db + 20.0) / 10.0));
+        b.carrier_freq = b.freq + 25.0 / b.n;
+        auto c = config(b, b.period);
+        c.max_carriers = max_carriers;
+        burst_acquirer acq(100e3, c);
+        const auto w = run(b, acq, static_cast<std::uint64_t>(150 * b.period), 8);
+        if (max_carriers == 0) {
+            EXPECT_EQ(acq.acquisitions(), 0u);
+            continue;
+        }
+        EXPECT_EQ(acq.acquisitions(), 1u);
+        ASSERT_EQ(acq.carriers().size(), 1u);
+        EXPECT_NEAR(acq.carriers()[0], b.carrier_freq * 100e3, 1.0);
+        int detected = 0;
+        for (const auto& win : w) {
+            if (!win.detection.detected)
+                continue;
+            ++detected;
+            EXPECT_NEAR(win.detection.freq_hz, b.freq * 100e3, 200.0);
+        }
+        EXPECT_GE(detected, 0.97 * 145);
+    }
+}
+
+TEST(burst_acquirer, locked_it_searches_around_the_tone_and_widens_when_lost)
+{
+    beacon b;
+    for (int k = 60; k < 70; ++k)
+        b.silent.insert(k); // a fade of 10 bursts
+    burst_acquirer acq(100e3, config(b, b.period));
+    const auto w = run(b, acq, static_cast<std::uint64_t>(100 * b.period), 9);
+    EXPECT_EQ(acq.acquisitions(), 1u);
+    const double bin = 100e3 / b.n, f = b.freq * 100e3;
+    int narrowed = 0, whole = 0;
+    for (const auto& win : w) {
+        const int k = nearest(b, win.start);
+        if (win.min_freq_hz != win.max_freq_hz) {
+            ++narrowed;
+            EXPECT_NEAR(0.5 * (win.min_freq_hz + win.max_freq_hz), f, 1.0 * bin);
+            EXPECT_NEAR(win.max_freq_hz - win.min_freq_hz, 20.0 * bin, 0.5 * bin);
+        } else if (k > 2) {
+            ++whole;
+            // Only after three misses in a row: the fade's 4th to 10th bursts.
+            EXPECT_GE(k, 63) << "slot " << win.slot;
+            EXPECT_LE(k, 70) << "slot " << win.slot;
+        }
+    }
+    EXPECT_GT(narrowed, 80);
+    EXPECT_EQ(whole, 8); // bursts 63-69 and the first found again (70)
+}

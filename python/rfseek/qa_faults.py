@@ -5,9 +5,10 @@
 #
 """doppler_estimator under the faults a real receiver brings, on a pulsed beacon made by
 GNU Radio's own blocks at -10 dB per-sample SNR, timing unknown (rfseek.faults):
-an overflow's lost samples and the rx_time tag after them, a clock that jumps; windows
+an overflow's lost samples and the rx_time tag after them, a clock that jumps (windows
 timed by the tag in force at their first sample, slots that follow time across the gap,
-and no window valid across it."""
+no window valid across it); a continuous carrier 20 dB above the beacon and wideband
+noise bursts (the beacon found and measured, the interferer never reported)."""
 
 import numpy as np
 import pmt
@@ -67,6 +68,29 @@ class qa_faults(gr_unittest.TestCase):
         before, after = by_offset(meas, 300_000)
         self.assertEqual(after[0]["slot"] - before[-1]["slot"],
                          round((after[0]["time"] - before[-1]["time"]) * FS / PERIOD))
+
+    def check_interferer(self, seed, **kw):
+        s = faults.beacon_stream(seed, -10.0, 10.0, 20.0, **kw)
+        est, meas = faults.measure(s)
+        r = faults.score(meas, s)
+        self.assertEqual(r["false"], 0)
+        self.assertEqual(r["on_interferer"], 0)
+        self.assertGreaterEqual(r["found"], 0.97 * r["sent"])
+        self.assertGreater(r["sent"], 190)
+        self.assertLessEqual(r["rms_over_crb"], 1.2)
+        if s.cw_freq is not None:  # found, and removed from every window
+            self.assertTrue(any(abs(f - s.cw_freq) < 5.0 for f in est.carriers()),
+                            (est.carriers(), s.cw_freq))
+        return r
+
+    def test_a_carrier_20_dB_above_the_beacon(self):
+        # Anywhere in the band outside +-1 kHz of the beacon: here 1.3 kHz and 31 kHz.
+        for seed, offset in ((41, 1300.0), (42, -31000.0)):
+            self.check_interferer(seed, cw_db=20.0, cw_offset=offset)
+
+    def test_wideband_noise_bursts(self):
+        # 10 ms bursts 10 dB over the noise, two a second at random times.
+        self.check_interferer(43, wideband_db=10.0)
 
     def run_tagged(self, x, tags, **kw):
         tb = gr.top_block()

@@ -4,7 +4,7 @@
  */
 
 /* BINDTOOL_HEADER_FILE(burst_acquirer.h) */
-/* BINDTOOL_HEADER_FILE_HASH(61015a79e85c300604c32298fad5c6fe) */
+/* BINDTOOL_HEADER_FILE_HASH(937215aaa3889b1b8ceb631c96df600b) */
 
 #include <gr-rfseek/burst_acquirer.h>
 #include <pybind11/complex.h>
@@ -14,7 +14,8 @@
 
 namespace py = pybind11;
 
-void bind_burst_acquirer(py::module& m)
+namespace {
+void bind_burst_acquirer_config(py::module& m)
 {
     using namespace gr::rfseek;
     py::class_<burst_acquirer_config>(
@@ -48,7 +49,21 @@ void bind_burst_acquirer(py::module& m)
                        "timing loop: steady-state phase gain (0, 1]")
         .def_readwrite("loop_beta",
                        &burst_acquirer_config::loop_beta,
-                       "timing loop: period gain [0, loop_alpha]");
+                       "timing loop: period gain [0, loop_alpha]")
+        .def_readwrite("track_bins",
+                       &burst_acquirer_config::track_bins,
+                       "locked: search +- this many bins around the tracked tone (0: "
+                       "the whole band)")
+        .def_readwrite("max_carriers",
+                       &burst_acquirer_config::max_carriers,
+                       "continuous carriers removed (0: none, only rejected)");
+}
+} // namespace
+
+void bind_burst_acquirer(py::module& m)
+{
+    using namespace gr::rfseek;
+    bind_burst_acquirer_config(m);
 
     py::class_<acquired_window>(m, "acquired_window", "One beacon window.")
         .def(py::init<>(), "An empty window.")
@@ -65,6 +80,12 @@ void bind_burst_acquirer(py::module& m)
                       "matched-filter start - predicted start (samples)")
         .def_readonly(
             "lock", &acquired_window::lock, "the acquisition it belongs to (1, 2, ...)")
+        .def_readonly("min_freq_hz",
+                      &acquired_window::min_freq_hz,
+                      "the band its test searched around the tracked tone (equal "
+                      "edges: the configured band)")
+        .def_readonly(
+            "max_freq_hz", &acquired_window::max_freq_hz, "the band's upper edge")
         .def_property_readonly(
             "samples",
             [](const acquired_window& w) {
@@ -100,6 +121,13 @@ void bind_burst_acquirer(py::module& m)
         .def("losses", &burst_acquirer::losses, "Locks lost so far.")
         .def("samples_seen", &burst_acquirer::samples_seen, "Samples pushed so far.")
         .def("gaps", &burst_acquirer::gaps, "Gaps told so far.")
+        .def("carriers",
+             &burst_acquirer::carriers,
+             "The continuous carriers removed (Hz).")
+        .def(
+            "tracked_freq",
+            &burst_acquirer::tracked_freq,
+            "Locked and searching around the tracked tone: its frequency (Hz); else NaN.")
         .def("gap",
              &burst_acquirer::gap,
              py::arg("samples"),

@@ -4,7 +4,7 @@
  */
 
 /* BINDTOOL_HEADER_FILE(doppler_estimator.h) */
-/* BINDTOOL_HEADER_FILE_HASH(66f6922f4343b496e2ec356f5cc58eaa) */
+/* BINDTOOL_HEADER_FILE_HASH(530496177468ca61b35723ae7b492f0f) */
 
 #include <gr-rfseek/doppler_estimator.h>
 #include <pybind11/pybind11.h>
@@ -163,5 +163,8 @@ void bind_doppler_estimator(py::module& m)
         .def("discontinuity_count",
              &doppler_estimator::discontinuity_count,
              "rx_time tags that disagreed with the sample count (samples lost, or the "
-             "clock set back).");
+             "clock set back).")
+        .def("carriers",
+             &doppler_estimator::carriers,
+             "'acquire': the continuous carriers (interferers) found and removed, Hz.");
 }

@@ -4,7 +4,7 @@
  */
 
 /* BINDTOOL_HEADER_FILE(tone_detector.h) */
-/* BINDTOOL_HEADER_FILE_HASH(8e80f04abadcaa87df4f6bcc7f16fcbe) */
+/* BINDTOOL_HEADER_FILE_HASH(74541d82f31f96828d80d881f5c7152b) */
 
 #include <gr-rfseek/tone_detector.h>
 #include <pybind11/complex.h>

@@ -94,8 +94,19 @@ void seeking_controller_impl::handle_nav(const pmt::pmt_t& msg)
         drop("nav", "no finite 'heading'", msg);
         return;
     }
-    d_nav_heading = as_double(h);
-    d_have_nav = true;
+    // Its own time, when it has one (out-of-order and late reports go where they
+    // belong).
+    pmt::pmt_t t = pmt::PMT_NIL;
+    try {
+        t = pmt::dict_ref(msg, d_key_time, pmt::PMT_NIL);
+    } catch (const std::exception&) {
+    }
+    const bool timed = number(t) && std::isfinite(as_double(t));
+    const bool was_foreign = d_nav.foreign_clock();
+    d_nav.report(as_double(h), timed, timed ? as_double(t) : 0.0);
+    if (d_nav.foreign_clock() && !was_foreign)
+        d_logger->info("nav reports' 'time' is not the measurements' clock (over 5 s "
+                       "apart): their offset is learned from the fastest reports");
 }
 
 void seeking_controller_impl::check_world(const pmt::pmt_t& world)
@@ -186,12 +197,27 @@ void seeking_controller_impl::handle_meas(const pmt::pmt_t& msg)
     // measure time; the estimator always sends it).
     if (!number(time))
         m.time_s = static_cast<double>(m.slot) * d_seeker->config().slot_period_s;
+    d_nav.measured(m.time_s);
+    bool from_nav = false;
+    nav_history::pick nav;
     if (number(heading) && std::isfinite(as_double(heading))) {
         m.has_heading = true;
         m.heading_rad = as_double(heading);
-    } else if (d_have_nav) {
-        m.has_heading = true;
-        m.heading_rad = d_nav_heading;
+    } else if (d_nav.any()) {
+        // The report nearest the window's time; none within a second: the strategy
+        // flies on its own heading model, and the telemetry says so.
+        nav = d_nav.at(m.time_s);
+        from_nav = true;
+        if (nav.found) {
+            m.has_heading = true;
+            m.heading_rad = nav.heading_rad;
+        } else if (d_unpaired++ == 0) {
+            d_logger->warn("no heading report within {:g} s of the window at {:.3f} s: "
+                           "measured without the vehicle's heading (counted: "
+                           "unpaired_count())",
+                           d_nav.max_gap_s(),
+                           m.time_s);
+        }
     }
     ++d_meas;
     if (!d_seeking && !m.has_heading && d_wait_heading) {
@@ -224,6 +250,14 @@ void seeking_controller_impl::handle_meas(const pmt::pmt_t& msg)
     message_port_pub(d_port_cmd, cmd);
     publish_status(c, m.time_s);
 
+    publish_telemetry(c, m, from_nav, nav);
+}
+
+void seeking_controller_impl::publish_telemetry(const command& c,
+                                                const measurement& m,
+                                                bool from_nav,
+                                                const nav_history::pick& nav)
+{
     pmt::pmt_t t = pmt::make_dict();
     t = pmt::dict_add(t, d_key_slot, pmt::from_uint64(c.slot));
     t = pmt::dict_add(t, d_key_time, pmt::from_double(m.time_s));
@@ -234,6 +268,13 @@ void seeking_controller_impl::handle_meas(const pmt::pmt_t& msg)
     // absent when there is none).
     if (m.has_heading)
         t = pmt::dict_add(t, pmt::mp("flown_heading"), pmt::from_double(m.heading_rad));
+    // From a nav report: how far its time was from the window's; none near: paired
+    // false.
+    if (from_nav) {
+        t = pmt::dict_add(t, pmt::mp("nav_paired"), pmt::from_bool(nav.found));
+        if (nav.found)
+            t = pmt::dict_add(t, pmt::mp("nav_offset_s"), pmt::from_double(nav.offset_s));
+    }
     t = pmt::dict_add(t, pmt::mp("update"), pmt::from_bool(c.update));
     t = pmt::dict_add(t, pmt::mp("holding"), pmt::from_bool(c.holding));
     t = pmt::dict_add(t, pmt::mp("accepted"), pmt::from_bool(c.accepted));
@@ -363,6 +404,12 @@ bool seeking_controller_impl::wait_for_heading() const
 {
     gr::thread::scoped_lock lock(setlock());
     return d_wait_heading;
+}
+
+std::uint64_t seeking_controller_impl::unpaired_count() const
+{
+    gr::thread::scoped_lock lock(setlock());
+    return d_unpaired;
 }
 
 std::uint64_t seeking_controller_impl::waiting_count() const

@@ -7,6 +7,7 @@
 #ifndef INCLUDED_RFSEEK_SEEKING_CONTROLLER_IMPL_H
 #define INCLUDED_RFSEEK_SEEKING_CONTROLLER_IMPL_H
 
+#include "nav_history.h"
 #include <gr-rfseek/seeking_controller.h>
 #include <memory>
 #include <set>
@@ -32,6 +33,7 @@ public:
     bool set_wind_forecast(double east_mps, double north_mps) override;
     bool wait_for_heading() const override;
     std::uint64_t waiting_count() const override;
+    std::uint64_t unpaired_count() const override;
     emitter_location location() const override;
 
 private:
@@ -48,15 +50,19 @@ private:
     bool d_world_checked = false;
 
     std::unique_ptr<seeker> d_seeker;
-    bool d_have_nav = false;
-    double d_nav_heading = 0.0;
-    bool d_wait_heading = false; // set_wait_for_heading
-    bool d_seeking = false;      // a meas has reached the strategy
+    nav_history d_nav;            // heading reports on the measurements' clock
+    std::uint64_t d_unpaired = 0; // windows with no report near their time
+    bool d_wait_heading = false;  // set_wait_for_heading
+    bool d_seeking = false;       // a meas has reached the strategy
     std::uint64_t d_waiting = 0;
     std::uint64_t d_meas = 0, d_invalid = 0, d_malformed = 0;
     std::set<std::string> d_logged;
 
     void publish_status(const command& c, double time_s);
+    void publish_telemetry(const command& c,
+                           const measurement& m,
+                           bool from_nav,
+                           const nav_history::pick& nav);
     int d_status = -1; // last published status (-1: none yet)
     emitter_location d_location;
     bool d_done = false;

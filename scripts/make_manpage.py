@@ -28,6 +28,7 @@ SUMMARIES = {
     "rfseek-plot-montecarlo": "figures and tables of rfseek-montecarlo results",
     "rfseek-soak": "memory of many flowgraphs and of a long study",
     "rfseek-bench-acquire": "benchmark: burst timing acquisition on a pulsed beacon",
+    "rfseek-bench-faults": "benchmark: the acquire alignment through receiver faults",
     "rfseek-bench-import": "benchmark: the time to import the module",
     "rfseek-bench-world": "benchmark: the cost of synthesising a beacon slot",
     "rfseek-bench-estimator": "benchmark: the cost of one frequency estimate",

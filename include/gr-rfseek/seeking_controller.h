@@ -24,11 +24,18 @@ namespace rfseek {
  *
  * \details
  * In "meas": dicts from doppler_estimator {slot, freq_hz, valid, heading?, snr_db?,
- * power_db?, time?}. In "nav": dicts {heading} from the vehicle; the heading of a meas is
- * used when present, else the latest nav heading. Every meas with a usable slot is
+ * power_db?, time?}. In "nav": dicts {heading, time?} from the vehicle; the heading of a
+ * meas is used when present, else the nav report nearest the window's time (reports
+ * late, out of order or on another clock are timed as nav_history says: a "time" on
+ * the measurements' clock is used as it is, one on another clock is moved by an
+ * offset learned from the fastest reports, none is the arrival), interpolated between
+ * the two around it; with no report within 1 s the window has no heading (counted,
+ * unpaired_count; telemetry nav_paired false) and the strategy flies on its own
+ * heading model. Every meas with a usable slot is
  * answered (but while waiting for the first heading: set_wait_for_heading below)
  * by one "cmd" {slot, heading, stage} and one "telemetry" {slot, stage,
- * theta_est, update, holding, accepted, filtered_freq_hz, freq_hz, valid}. Invalid
+ * theta_est, update, holding, accepted, filtered_freq_hz, freq_hz, valid, and
+ * flown_heading, nav_paired, nav_offset_s when from nav}. Invalid
  * measurements are ignored by the strategy (a cmd is still sent so a lockstep source
  * keeps going); after a run of them the course is held. Malformed messages are logged
  * once per kind, counted and dropped.
@@ -80,6 +87,9 @@ public:
     virtual bool wait_for_heading() const = 0;
     //! meas messages set aside while waiting for the first heading.
     virtual std::uint64_t waiting_count() const = 0;
+    //! Windows with no nav report within 1 s of their time (measured without a
+    //! heading).
+    virtual std::uint64_t unpaired_count() const = 0;
     /*!
      * A new wind forecast for the ground track, mid-flight (m/s toward east and north in
      * the compass frame; both 0: none; docs/seeker.md "A wind forecast"); it replaces

@@ -172,7 +172,7 @@ def score(meas, s, skip_first=2):
     inl = e[np.abs(e) <= 10 * s.crb] if len(e) else e
     return dict(found=found, sent=len(sent), false=false, on_interferer=on_cw,
                 rms_over_crb=float(np.sqrt(np.mean(inl ** 2)) / s.crb) if len(inl) else math.nan,
-                outliers=int(len(e) - len(inl)),
+                outliers=int(len(e) - len(inl)), inliers=[float(v) for v in inl],
                 max_clock_err_s=float(clock_err),
                 timing_rms=float(np.sqrt(np.mean(np.square(timing)))) if timing else math.nan,
                 hit=hit)

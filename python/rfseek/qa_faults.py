@@ -132,6 +132,40 @@ class qa_faults(gr_unittest.TestCase):
         self.assertAlmostEqual(meas[1]["time"], 7.514, places=9)
         self.assertEqual(est.truncated_count(), 1)
 
+    def test_the_controller_pairs_each_window_with_the_report_nearest_in_time(self):
+        # Heading reports every 0.1 s of a turn at 0.5 rad/s, posted out of order, then
+        # windows: at 0.53 s the heading is the reports' around it; at 2.5 s no report is
+        # within 1 s: no heading, and the telemetry says so.
+        import time
+        ctl = rfseek.seeking_controller(rfseek.seeker_config())
+        dbg = blocks.message_debug()
+        tb = gr.top_block()
+        tb.msg_connect(ctl, "telemetry", dbg, "store")
+        tb.start()
+        try:
+            for k in (0, 3, 1, 2, 5, 4, 7, 6, 9, 8, 10):
+                ctl.to_basic_block()._post(pmt.intern("nav"),
+                                           pmt.to_pmt({"heading": 0.05 * k, "time": 0.1 * k}))
+            time.sleep(0.3)
+            for slot, t in ((11, 0.53), (12, 1.02), (50, 2.5)):
+                ctl.to_basic_block()._post(pmt.intern("meas"), pmt.to_pmt(
+                    {"slot": slot, "time": t, "freq_hz": 10.0, "valid": True}))
+            deadline = time.monotonic() + 10.0
+            while dbg.num_messages() < 3 and time.monotonic() < deadline:
+                time.sleep(0.01)
+        finally:
+            tb.stop()
+            tb.wait()
+        tel = [pmt.to_python(dbg.get_message(i)) for i in range(dbg.num_messages())]
+        self.assertEqual(len(tel), 3)
+        self.assertAlmostEqual(tel[0]["flown_heading"], 0.265, places=12)
+        self.assertAlmostEqual(tel[0]["nav_offset_s"], -0.03, places=12)
+        self.assertAlmostEqual(tel[1]["flown_heading"], 0.5, places=12)  # the last, 0.02 s
+        self.assertTrue(tel[0]["nav_paired"] and tel[1]["nav_paired"])
+        self.assertFalse(tel[2]["nav_paired"])
+        self.assertNotIn("flown_heading", tel[2])
+        self.assertEqual(ctl.unpaired_count(), 1)
+
 
 if __name__ == "__main__":
     gr_unittest.run(qa_faults)

@@ -18,7 +18,7 @@ MAKE = os.path.join(SOURCE, "scripts", "make_manpage.py")
 BUILD = os.environ.get("RFSEEK_BUILD_DIR", os.getcwd())
 PROGRAMS = ("rfseek-sim", "rfseek-live", "rfseek-sitl", "rfseek-montecarlo",
             "rfseek-plot-montecarlo", "rfseek-soak", "rfseek-bench-acquire",
-            "rfseek-bench-import", "rfseek-bench-world", "rfseek-bench-estimator",
+            "rfseek-bench-faults", "rfseek-bench-import", "rfseek-bench-world", "rfseek-bench-estimator",
             "rfseek-bench-loop", "rfseek-estimator-study")
 
 

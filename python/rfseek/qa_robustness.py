@@ -332,11 +332,12 @@ ROWS = [
      "one line saying --column needs --against, exit 2",
      program([sys.executable, os.path.join(SOURCE, "apps", "rfseek-plot-montecarlo"),
               "r.json", "--column", "straight_ratio"], "--against")),
-    ("programs", "`rfseek-soak --strategy nosuch`, `rfseek-bench-acquire --seeds 0`",
+    ("programs", "`rfseek-soak --strategy nosuch`, `rfseek-bench-acquire --seeds 0`, `rfseek-bench-faults --faults nosuch`",
      "one line naming the option, exit 2",
      lambda tc: [program([sys.executable, os.path.join(SOURCE, "apps", a)] + args, w)(tc)
                  for a, args, w in (("rfseek-soak", ["--strategy", "nosuch"], "--strategy"),
-                                    ("rfseek-bench-acquire", ["--seeds", "0"], "--seeds"))]),
+                                    ("rfseek-bench-acquire", ["--seeds", "0"], "--seeds"),
+                                    ("rfseek-bench-faults", ["--faults", "nosuch"], "--faults"))]),
     ("programs", "`rfseek-estimator-study --seed -1`, `--snr-min nan`, `--snr-min 5 --snr-max 0`",
      "one line naming the option, exit 2",
      lambda tc: [program([os.path.join(BUILD, "apps", "rfseek-estimator-study")] + args, w)(tc)

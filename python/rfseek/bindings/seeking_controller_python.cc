@@ -4,7 +4,7 @@
  */
 
 /* BINDTOOL_HEADER_FILE(seeking_controller.h) */
-/* BINDTOOL_HEADER_FILE_HASH(7ee5053fac4c1c2055b54db710e98efc) */
+/* BINDTOOL_HEADER_FILE_HASH(ce298c2a46b6419f60bdb89beba45764) */
 
 #include <gr-rfseek/seeking_controller.h>
 #include <pybind11/pybind11.h>
@@ -55,6 +55,10 @@ void bind_seeking_controller(py::module& m)
         .def("waiting_count",
              &seeking_controller::waiting_count,
              "meas messages set aside while waiting for the first heading.")
+        .def("unpaired_count",
+             &seeking_controller::unpaired_count,
+             "Windows with no nav report within 1 s of their time (measured without a "
+             "heading).")
         .def("set_wind_forecast",
              &seeking_controller::set_wind_forecast,
              py::arg("east_mps"),

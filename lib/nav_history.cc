@@ -32,7 +32,8 @@ void nav_history::report(double heading_rad, bool has_time, double time)
 {
     if (!std::isfinite(heading_rad))
         return;
-    if (!has_time || !std::isfinite(time)) {
+    d_timed_last = has_time && std::isfinite(time);
+    if (!d_timed_last) {
         if (!d_have_meas) {
             d_have_pending = true; // timed by the first measurement
             d_pending_heading = heading_rad;
@@ -110,6 +111,23 @@ nav_history::pick nav_history::at(double time) const
     p.found = true;
     p.heading_rad = n->heading;
     p.offset_s = n->t - time;
+    // After the latest report (a late link): carried on at the turn rate of the two
+    // latest reports, for at most half a second.
+    if (n == lo && !hi && after != d_reports.begin()) {
+        auto b = std::prev(after);
+        while (b != d_reports.begin() && std::prev(b)->t == lo->t)
+            --b;
+        if (b != d_reports.begin()) {
+            const entry& prev = *std::prev(b);
+            const double dt = lo->t - prev.t;
+            if (dt > 0.0 && dt <= d_max_gap) {
+                const double rate =
+                    std::clamp(world::wrap(lo->heading - prev.heading) / dt, -1.0, 1.0);
+                p.heading_rad =
+                    world::wrap(lo->heading + rate * std::min(time - lo->t, 0.5));
+            }
+        }
+    }
     return p;
 }
 

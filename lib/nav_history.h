@@ -11,6 +11,7 @@
 #define INCLUDED_RFSEEK_NAV_HISTORY_H
 
 #include <gr-rfseek/api.h>
+#include <cmath>
 #include <cstdint>
 #include <deque>
 
@@ -28,8 +29,9 @@ namespace rfseek {
  *    where it belongs. (A delay common to every report cannot be told from the offset.)
  *  - without a "time", the latest measurement's time when it arrives (its arrival).
  * A window at t takes the heading of the report nearest in time, interpolated between
- * the two that bracket t when both are within max_gap; with none within max_gap of t
- * it has none.
+ * the two that bracket t when both are within max_gap, carried on at the turn rate of
+ * the two latest (at most 1 rad/s, for at most 0.5 s) when t is after the latest; with
+ * none within max_gap of t it has none.
  */
 class RFSEEK_API nav_history
 {
@@ -49,6 +51,12 @@ public:
     pick at(double time) const;
 
     bool any() const { return !d_reports.empty() || d_have_pending; }
+    //! The latest report to arrive had a time of its own (a late one can be waited for).
+    bool timed() const { return d_timed_last; }
+    //! The latest report's time (-inf: none).
+    double newest() const { return d_reports.empty() ? -HUGE_VAL : d_reports.back().t; }
+    //! The latest measurement's time (-inf: none).
+    double latest_measured() const { return d_have_meas ? d_latest : -HUGE_VAL; }
     //! The reports' clock is not the measurements' (their offset is learned).
     bool foreign_clock() const { return d_foreign; }
     double max_gap_s() const { return d_max_gap; }
@@ -64,6 +72,7 @@ private:
     std::deque<entry> d_reports; // by time
     std::deque<double> d_diffs;  // (latest meas - report time), foreign clock
     bool d_have_meas = false, d_foreign = false, d_have_pending = false;
+    bool d_timed_last = false;
     double d_latest = 0.0;
     double d_pending_heading = 0.0; // a report before any measurement, without a time
     std::uint64_t d_order = 0;

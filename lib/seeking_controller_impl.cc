@@ -107,6 +107,7 @@ void seeking_controller_impl::handle_nav(const pmt::pmt_t& msg)
     if (d_nav.foreign_clock() && !was_foreign)
         d_logger->info("nav reports' 'time' is not the measurements' clock (over 5 s "
                        "apart): their offset is learned from the fastest reports");
+    drain();
 }
 
 void seeking_controller_impl::check_world(const pmt::pmt_t& world)
@@ -198,12 +199,41 @@ void seeking_controller_impl::handle_meas(const pmt::pmt_t& msg)
     if (!number(time))
         m.time_s = static_cast<double>(m.slot) * d_seeker->config().slot_period_s;
     d_nav.measured(m.time_s);
-    bool from_nav = false;
-    nav_history::pick nav;
+    ++d_meas;
     if (number(heading) && std::isfinite(as_double(heading))) {
         m.has_heading = true;
         m.heading_rad = as_double(heading);
-    } else if (d_nav.any()) {
+    }
+    // A window whose heading comes on nav waits (in order) for the report of its time:
+    // a late link's reports come after the window is measured.
+    d_pending.push_back(m);
+    drain();
+}
+
+void seeking_controller_impl::drain()
+{
+    const double half_slot = 0.5 * d_seeker->config().slot_period_s;
+    while (!d_pending.empty()) {
+        const measurement& m = d_pending.front();
+        // (Reports without a time of their own are timed by their arrival: nothing to
+        // wait for.)
+        const bool ready =
+            m.has_heading || !d_nav.any() || !d_nav.timed() || !std::isfinite(m.time_s) ||
+            d_nav.newest() >= m.time_s - half_slot ||
+            d_nav.latest_measured() - m.time_s >= d_nav_wait_s || d_pending.size() > 256;
+        if (!ready)
+            return;
+        const measurement next = m;
+        d_pending.pop_front();
+        process(next);
+    }
+}
+
+void seeking_controller_impl::process(measurement m)
+{
+    bool from_nav = false;
+    nav_history::pick nav;
+    if (!m.has_heading && d_nav.any()) {
         // The report nearest the window's time; none within a second: the strategy
         // flies on its own heading model, and the telemetry says so.
         nav = d_nav.at(m.time_s);
@@ -219,7 +249,6 @@ void seeking_controller_impl::handle_meas(const pmt::pmt_t& msg)
                            m.time_s);
         }
     }
-    ++d_meas;
     if (!d_seeking && !m.has_heading && d_wait_heading) {
         // No heading yet: the strategy would start from an assumed one (a straight
         // line away from the emitter if it is wrong). The vehicle keeps its course.

@@ -9,6 +9,7 @@
 
 #include "nav_history.h"
 #include <gr-rfseek/seeking_controller.h>
+#include <deque>
 #include <memory>
 #include <set>
 
@@ -43,6 +44,12 @@ private:
     }
     void handle_meas(const pmt::pmt_t& msg);
     void handle_nav(const pmt::pmt_t& msg);
+    // Measurements waiting for the nav report of their time (in order), and their
+    // processing once it has come or nav_wait_s of later windows have.
+    void drain();
+    void process(measurement m);
+    std::deque<measurement> d_pending;
+    double d_nav_wait_s = 0.5;
     void drop(const std::string& port, const std::string& kind, const pmt::pmt_t& msg);
     // A meas forwarded from channel_source's beacon tag carries the world's "world"
     // dict: warns once for each of speed, carrier and slot period told otherwise.

@@ -16,12 +16,14 @@ For each seed, rfseek-live --source sim flies the same scenario twice, paced to
            the beacon as FAMILY's radio delivers it (its device rate, LO offset, DC leak,
            IQ imbalance, quantisation) through the receive chain of a live radio, its
            timing acquired (alignment acquire), the heading from the vehicle's reports.
+With --fault "ARGS" both flights go --via, the second with rfseek-live's ARGS added (a
+fault: --fault "--nav-fault 0.3,0,2"), so the pair is the fault's cost.
 It prints the distance flown (as a ratio to the start distance) of each and the paired
 difference, with its mean and standard error.
 
   /usr/bin/python3 scripts/rehearsal_pairs.py [--seeds 20] [--first 1]
       [--distance 1000] [--speedup 10] [--strategy paper] [--via mavlink|radio:FAMILY]
-      [--autopilot ardupilot_plane] [--set KEY=VALUE ...]
+      [--autopilot ardupilot_plane] [--set KEY=VALUE ...] [--fault "ARGS"]
 
 Run from a build tree (PYTHONPATH and LD_LIBRARY_PATH as in rfseek-env.sh) or with the
 module installed.
@@ -35,7 +37,7 @@ import subprocess
 import sys
 
 
-def fly(live, seed, args, via):
+def fly(live, seed, args, via, extra=()):
     cmd = [sys.executable, live, "--source", "sim", "--seed", str(seed),
            "--set", "initial_distance_m=%g" % args.distance, "--speedup", str(args.speedup),
            "--strategy", args.strategy, "--duration", str(args.timeout)]
@@ -45,6 +47,7 @@ def fly(live, seed, args, via):
         cmd += ["--vehicle", "mavlink", "--autopilot", args.autopilot]
     elif via:
         cmd += ["--radio", via.split(":", 1)[1]]
+    cmd += list(extra)
     r = subprocess.run(cmd, capture_output=True, text=True, timeout=args.timeout + 120)
     m = re.search(r"rfseek-live: (arrived|stopped), (\d+) m flown", r.stderr)
     if r.returncode != 0 or not m:
@@ -75,6 +78,8 @@ def main(argv):
     p.add_argument("--set", action="append", default=[], metavar="KEY=VALUE",
                    help="scenario settings for both runs (e.g. carrier_hz=915e6 for a "
                         "radio that does not tune 2 GHz)")
+    p.add_argument("--fault", default=None, metavar="ARGS",
+                   help="both flights --via, the second with these rfseek-live options")
     p.add_argument("--timeout", type=float, default=600.0,
                    help="wall seconds per run before it is stopped")
     args = p.parse_args(argv)
@@ -100,12 +105,16 @@ def main(argv):
     if args.via != "mavlink" and not args.via.startswith("radio:"):
         p.error("--via: mavlink or radio:FAMILY")
     name = args.via.split(":")[0]
-    print("seed  direct ratio  %7s ratio  difference" % name)
+    base, extra = (args.via, args.fault.split()) if args.fault else (None, ())
+    if args.fault:
+        name = "fault"
+    first = "clean" if args.fault else "direct"
+    print("seed  %6s ratio  %7s ratio  difference" % (first, name))
     late = 0
     for seed in range(args.first, args.first + args.seeds):
         try:
-            a_ok, a, late_a = fly(live, seed, args, None)
-            b_ok, b, late_b = fly(live, seed, args, args.via)
+            a_ok, a, late_a = fly(live, seed, args, base)
+            b_ok, b, late_b = fly(live, seed, args, args.via, extra)
         except RunFailed as e:
             print("rehearsal_pairs.py: error: %s" % e, file=sys.stderr)
             return 1
@@ -121,12 +130,12 @@ def main(argv):
     n = len(d)
     mean = sum(d) / n
     se = math.sqrt(sum((x - mean) ** 2 for x in d) / (n - 1) / n) if n > 1 else float("nan")
-    print("direct:  mean ratio %.3f, %d/%d arrived" % (
+    print("%s:  mean ratio %.3f, %d/%d arrived" % (first,
         sum(r[0] for r in rows) / n, sum(r[2] for r in rows), n))
     print("%s: mean ratio %.3f, %d/%d arrived" % (
         name, sum(r[1] for r in rows) / n, sum(r[3] for r in rows), n))
-    print("paired difference (%s - direct): %+.4f +- %.4f (standard error)"
-          % (name, mean, se))
+    print("paired difference (%s - %s): %+.4f +- %.4f (standard error)"
+          % (name, first, mean, se))
     print("commands the simulator flew late (free-running, over all runs): %d" % late)
     return 0
 

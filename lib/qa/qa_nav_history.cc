@@ -31,10 +31,14 @@ TEST(nav_history, the_report_nearest_in_time_interpolated_and_in_order)
     EXPECT_NEAR(p.offset_s, 0.05, 1e-12);
     p = h.at(10.3);
     EXPECT_NEAR(p.heading_rad, 0.15, 1e-12);
-    // Past the last report: the nearest, within a second.
+    // Past the last report (within a second): carried on at the turn rate of the last
+    // two, for at most half a second.
+    p = h.at(10.6);
+    ASSERT_TRUE(p.found);
+    EXPECT_NEAR(p.heading_rad, 0.3, 1e-12);
     p = h.at(11.2);
     ASSERT_TRUE(p.found);
-    EXPECT_NEAR(p.heading_rad, 0.25, 1e-12);
+    EXPECT_NEAR(p.heading_rad, 0.25 + 0.5 * 0.5, 1e-12);
     EXPECT_NEAR(p.offset_s, -0.7, 1e-12);
     EXPECT_FALSE(h.at(11.6).found);
     EXPECT_FALSE(h.foreign_clock());

@@ -5,7 +5,9 @@
 """Ready-made flowgraphs: the closed-loop seek of channel_source -> doppler_estimator ->
 seeking_controller -> channel_source, with the truth and telemetry collected."""
 
+import heapq
 import math
+import random
 import sys
 
 import pmt
@@ -96,20 +98,60 @@ class closed_loop(gr.top_block):
 
 class state_to_nav(gr.basic_block):
     """Turns channel_source's per-slot truth into the heading reports a vehicle would
-    send ({heading} = the measured heading), for recordings and demos of the nav path."""
+    send ({heading, time}: the measured heading at the world's time), for recordings,
+    demos and rehearsals of the nav path. A link's faults, in the world's time:
+    delay_s (every report that late), jitter_s (each a further 0 to jitter_s late,
+    drawn from `seed`: reports then arrive out of order), and dropouts (no report for
+    dropout_s seconds, every dropout_every_s seconds from the first period on)."""
 
-    def __init__(self):
+    def __init__(self, delay_s=0.0, jitter_s=0.0, dropout_s=0.0, dropout_every_s=20.0,
+                 seed=0):
         gr.basic_block.__init__(self, name="rfseek_state_to_nav", in_sig=None, out_sig=None)
+        for name, v, lo in (("delay_s", delay_s, 0.0), ("jitter_s", jitter_s, 0.0),
+                            ("dropout_s", dropout_s, 0.0),
+                            ("dropout_every_s", dropout_every_s, 1e-3)):
+            if not (isinstance(v, (int, float)) and math.isfinite(v) and lo <= v <= 3600):
+                raise ValueError("state_to_nav: %s = %r: must be in [%g, 3600] s"
+                                 % (name, v, lo))
+        if dropout_s >= dropout_every_s:
+            raise ValueError("state_to_nav: dropout_s = %r: must be below dropout_every_s "
+                             "= %r" % (dropout_s, dropout_every_s))
+        self.delay_s, self.jitter_s = float(delay_s), float(jitter_s)
+        self.dropout_s, self.dropout_every_s = float(dropout_s), float(dropout_every_s)
+        self._rng = random.Random(seed)
+        self._held = []  # (release time, arrival order, report)
+        self._order = 0
+        self.sent = self.dropped = 0
         self.message_port_register_in(pmt.intern("state"))
         self.message_port_register_out(pmt.intern("nav"))
         self.set_msg_handler(pmt.intern("state"), self.on_state)
 
     def on_state(self, msg):
         try:
-            h = float(pmt.to_python(msg)["measured_heading"])
+            d = pmt.to_python(msg)
+            h = float(d["measured_heading"])
+            t = float(d.get("time", math.nan))
         except (KeyError, TypeError, ValueError, AttributeError):
             return
-        self.message_port_pub(pmt.intern("nav"), pmt.to_pmt({"heading": h}))
+        report = {"heading": h}
+        if math.isfinite(t):
+            report["time"] = t
+        faulty = self.delay_s > 0 or self.jitter_s > 0 or self.dropout_s > 0
+        if not faulty or not math.isfinite(t):
+            self.sent += 1
+            self.message_port_pub(pmt.intern("nav"), pmt.to_pmt(report))
+            return
+        phase = t % self.dropout_every_s
+        if t >= self.dropout_every_s and phase < self.dropout_s:
+            self.dropped += 1
+        else:
+            late = self.delay_s + self._rng.uniform(0.0, self.jitter_s)
+            heapq.heappush(self._held, (t + late, self._order, report))
+            self._order += 1
+        # Released when the world's time has passed theirs.
+        while self._held and self._held[0][0] <= t:
+            self.sent += 1
+            self.message_port_pub(pmt.intern("nav"), pmt.to_pmt(heapq.heappop(self._held)[2]))
 
 
 def arrival_summary(states, status, telemetry=None):

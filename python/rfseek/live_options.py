@@ -5,6 +5,7 @@
 """rfseek-live's checks of what it is asked before any device is opened: radio settings
 that a source would ignore, and where each --set KEY=VALUE goes; and its progress line."""
 
+import argparse
 import math
 
 
@@ -31,11 +32,29 @@ def refuse_unused(args, serving=False):
         why = "the radio's settings belong to the --zmq-serve process"
     else:
         return
+    if getattr(args, "nav_fault", None) and not (serving or (args.source == "sim" and
+                                                              args.radio)):
+        raise ValueError("--nav-fault: only in a rehearsal (--source sim --radio FAMILY, "
+                         "or --zmq-serve), where the heading reports are simulated")
     unused = [flag for flag, value in given.items() if value is not None]
     if unused:
         raise ValueError("%s: not used %s: %s" % (
             ", ".join(unused), "by --zmq-serve" if serving else
             "with --source %s" % args.source, why))
+
+
+def nav_fault(text):
+    """--nav-fault DELAY[,JITTER[,DROPOUT[,EVERY]]] (seconds) -> state_to_nav's faults."""
+    try:
+        v = [float(x) for x in text.split(",")]
+    except ValueError:
+        v = []
+    if not 1 <= len(v) <= 4 or not all(math.isfinite(x) and x >= 0 for x in v) or \
+            (len(v) == 4 and not v[2] < v[3]) or (len(v) == 3 and not v[2] < 20.0):
+        raise argparse.ArgumentTypeError(
+            "%r: must be DELAY[,JITTER[,DROPOUT[,EVERY]]], seconds >= 0 (a dropout "
+            "shorter than its period, 20 s by default)" % text)
+    return dict(zip(("delay_s", "jitter_s", "dropout_s", "dropout_every_s"), v))
 
 
 def split_sets(args, rfseek):

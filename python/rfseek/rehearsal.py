@@ -53,10 +53,10 @@ class rehearsal_source(gr.hier_block2):
     """The world's beacon through a simulated `family` radio and the receive chain:
     output at the world's rate (with rx_rate), message ports cmd (in; to the world),
     state (out; the world's truth, for logs) and nav (out; heading reports for the
-    controller)."""
+    controller; nav_faults: state_to_nav's link faults, e.g. {"delay_s": 0.3})."""
 
     def __init__(self, sc, family, speedup=1.0, realtime=True, lo_offset=None,
-                 device_rate=None, **impairments):
+                 device_rate=None, nav_faults=None, **impairments):
         gr.hier_block2.__init__(self, "rehearsal_source", gr.io_signature(0, 0, 0),
                                 gr.io_signature(1, 1, gr.sizeof_gr_complex))
         self.settings = rehearsal_plan(sc, family, lo_offset, device_rate)
@@ -65,7 +65,7 @@ class rehearsal_source(gr.hier_block2):
                                **impairments)
         from .radios import radio_for
         self.chain = radio_rx_chain(self.settings, None, radio_for(family).ddc)
-        self.nav = state_to_nav()
+        self.nav = state_to_nav(**(nav_faults or {}))
         self.connect(self.world, self.radio, self.chain, self)
         for port in ("cmd",):
             self.message_port_register_hier_in(port)
@@ -109,7 +109,8 @@ class beacon_side(gr.top_block):
     ZeroMQ (samples with their tags at `address`, heading reports at the next port), the
     controller's commands pulled from the port after. Ends when the world does."""
 
-    def __init__(self, sc, family, address, speedup=1.0, realtime=True, **impairments):
+    def __init__(self, sc, family, address, speedup=1.0, realtime=True, nav_faults=None,
+                 **impairments):
         gr.top_block.__init__(self, "rfseek beacon side")
         from gnuradio import zeromq
         samples, nav, cmd = zmq_ports(address)
@@ -118,7 +119,7 @@ class beacon_side(gr.top_block):
         self.radio = sim_radio(self.settings, sc.samp_rate_hz, _noise_rms(sc),
                                **impairments)
         self.push = zeromq.push_sink(gr.sizeof_gr_complex, 1, samples, 100, True, -1)
-        self.nav = state_to_nav()
+        self.nav = state_to_nav(**(nav_faults or {}))
         self.nav_out = zeromq.push_msg_sink(nav, 100, True)
         self.cmd_in = zeromq.pull_msg_source(cmd, 100, True)
         self.connect(self.world, self.radio, self.push)

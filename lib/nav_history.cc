@@ -61,8 +61,18 @@ void nav_history::measured(double time)
 {
     if (!std::isfinite(time))
         return;
+    const bool first = !d_have_meas;
     d_latest = d_have_meas ? std::max(d_latest, time) : time;
     d_have_meas = true;
+    // Timed reports before the first window, on another clock: the newest is taken as
+    // now, and the others keep their spacing from it.
+    if (first && !d_reports.empty() && std::abs(d_reports.back().t - time) > 5.0) {
+        d_foreign = true;
+        const double shift = time - d_reports.back().t;
+        d_diffs.push_back(shift);
+        for (auto& e : d_reports)
+            e.t += shift;
+    }
     if (d_have_pending) {
         d_have_pending = false;
         insert(d_latest, d_pending_heading);

@@ -101,3 +101,19 @@ TEST(nav_history, reports_without_a_time_are_timed_by_their_arrival)
     h.measured(6.5);
     EXPECT_FALSE(h.at(6.5).found); // 1.45 s since the last report
 }
+
+TEST(nav_history, timed_reports_before_the_first_window_on_another_clock)
+{
+    // A vehicle's reports on the epoch (1.7e9 s) arrive before the first window (0.05 s).
+    nav_history h;
+    h.report(0.1, true, 1.7e9 + 0.0);
+    h.report(0.2, true, 1.7e9 + 0.1);
+    h.measured(0.05);
+    EXPECT_TRUE(h.foreign_clock());
+    const auto p = h.at(0.05);
+    ASSERT_TRUE(p.found);
+    EXPECT_NEAR(p.heading_rad, 0.2, 1e-6); // (the epoch's float precision)
+    h.measured(0.15);
+    h.report(0.3, true, 1.7e9 + 0.2); // arrives with the window at 0.15: the same offset
+    EXPECT_NEAR(h.at(0.15).heading_rad, 0.3, 1e-6);
+}

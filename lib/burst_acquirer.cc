@@ -252,6 +252,13 @@ acquired_window burst_acquirer::make_window(std::uint64_t start,
     w.detection = d;
     w.timing_error = err;
     w.lock = d_acquisitions;
+    w.peak = 0.0;
+    for (const auto* x = at(start); x != at(start) + d_cfg.window_len; ++x)
+        w.peak = std::max({ w.peak,
+                            static_cast<double>(std::abs(x->real())),
+                            static_cast<double>(std::abs(x->imag())) });
+    if (!std::isfinite(w.peak))
+        w.peak = 0.0;
     if (d_scratch_start == start) {
         w.samples = d_scratch;
         w.min_freq_hz = d_scratch_lo;

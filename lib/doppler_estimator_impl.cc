@@ -156,7 +156,18 @@ void doppler_estimator_impl::finish_window(bool truncated)
     // Periodic windows are numbered by the period they start in, counted in time.
     const std::uint64_t slot =
         d_periodic ? (d_start + d_shift - d_offset) / d_period : d_windows;
-    publish(d_start, e, d_fields, slot, d_detect ? &det : nullptr, nullptr);
+    double peak = 0.0;
+    for (std::size_t i = 0; i < d_fill; ++i)
+        peak = std::max({ peak,
+                          static_cast<double>(std::abs(d_buf[i].real())),
+                          static_cast<double>(std::abs(d_buf[i].imag())) });
+    publish(d_start,
+            e,
+            d_fields,
+            slot,
+            d_detect ? &det : nullptr,
+            nullptr,
+            std::isfinite(peak) ? peak : 0.0);
 }
 
 void doppler_estimator_impl::publish(std::uint64_t start,
@@ -164,10 +175,17 @@ void doppler_estimator_impl::publish(std::uint64_t start,
                                      const pmt::pmt_t& fields,
                                      std::uint64_t slot,
                                      const tone_detection* det,
-                                     const acquired_window* acq)
+                                     const acquired_window* acq,
+                                     double peak)
 {
     if (det && !det->detected)
         e.valid = false; // noise alone, at the set false-alarm probability
+    // A clipped window's frequency and power are not the beacon's alone.
+    const bool clipped = d_full_scale > 0.0 && peak >= 0.95 * d_full_scale;
+    if (clipped) {
+        e.valid = false;
+        ++d_clipped;
+    }
     ++d_windows;
     if (!e.valid)
         ++d_invalid;
@@ -201,6 +219,13 @@ void doppler_estimator_impl::publish(std::uint64_t start,
         m = pmt::dict_add(
             m, pmt::mp("timing_error"), pmt::from_double(acq->timing_error));
         m = pmt::dict_add(m, pmt::mp("lock"), pmt::from_uint64(acq->lock));
+    }
+    if (d_full_scale > 0.0) {
+        m = pmt::dict_add(
+            m,
+            pmt::mp("peak_dbfs"),
+            pmt::from_double(std::max(20.0 * std::log10(peak / d_full_scale), -200.0)));
+        m = pmt::dict_add(m, pmt::mp("clipped"), pmt::from_bool(clipped));
     }
     m = pmt::dict_add(m, pmt::mp("valid"), pmt::from_bool(e.valid));
     message_port_pub(d_port_meas, m);
@@ -325,7 +350,7 @@ void doppler_estimator_impl::acquire(const gr_complex* in, std::uint64_t count)
         const tone_estimate e = d_est.estimate(w.samples.data());
         if (banded)
             d_est.set_band(lo, hi);
-        publish(w.start, e, pmt::PMT_NIL, w.slot, &w.detection, &w);
+        publish(w.start, e, pmt::PMT_NIL, w.slot, &w.detection, &w, w.peak);
     }
 }
 
@@ -572,6 +597,28 @@ std::uint64_t doppler_estimator_impl::discontinuity_count() const
 {
     gr::thread::scoped_lock lock(setlock());
     return d_clock.discontinuities();
+}
+
+void doppler_estimator_impl::set_full_scale(double full_scale)
+{
+    if (!(full_scale >= 0.0) || !std::isfinite(full_scale))
+        throw std::invalid_argument(
+            "doppler_estimator: full_scale = " + std::to_string(full_scale) +
+            ": must be >= 0 and finite (0: no clipping check)");
+    gr::thread::scoped_lock lock(d_setlock);
+    d_full_scale = full_scale;
+}
+
+double doppler_estimator_impl::full_scale() const
+{
+    gr::thread::scoped_lock lock(setlock());
+    return d_full_scale;
+}
+
+std::uint64_t doppler_estimator_impl::clipped_count() const
+{
+    gr::thread::scoped_lock lock(setlock());
+    return d_clipped;
 }
 
 std::vector<double> doppler_estimator_impl::carriers() const

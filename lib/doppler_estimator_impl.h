@@ -66,6 +66,9 @@ public:
     double period_estimate() const override;
     std::uint64_t discontinuity_count() const override;
     std::vector<double> carriers() const override;
+    void set_full_scale(double full_scale) override;
+    double full_scale() const override;
+    std::uint64_t clipped_count() const override;
 
 private:
     gr::thread::mutex& setlock() const
@@ -80,7 +83,8 @@ private:
                  const pmt::pmt_t& fields,
                  std::uint64_t slot,
                  const tone_detection* det,
-                 const acquired_window* acq);
+                 const acquired_window* acq,
+                 double peak);
     void apply_rate(double rate);
     void on_rate_tag(std::uint64_t offset, const pmt::pmt_t& value);
     void on_time_tag(std::uint64_t offset, const pmt::pmt_t& value);
@@ -105,7 +109,8 @@ private:
     sample_clock d_clock;      // times from the rx_time / rx_rate tag in force
     std::uint64_t d_shift = 0; // samples lost in the stream's gaps (periodic windows
                                // and their slots follow time across them)
-    std::uint64_t d_windows = 0, d_invalid = 0, d_truncated = 0;
+    std::uint64_t d_windows = 0, d_invalid = 0, d_truncated = 0, d_clipped = 0;
+    double d_full_scale = 0.0;               // 0: no clipping check
     std::unique_ptr<burst_acquirer> d_acq;   // alignment "acquire"
     std::unique_ptr<tone_detector> d_detect; // the per-window test (pfa > 0), others
 

@@ -49,6 +49,9 @@ struct RFSEEK_API acquired_window {
     //! The band its test searched when narrowed around the tracked tone (Hz; equal
     //! values: the configured band).
     double min_freq_hz = 0.0, max_freq_hz = 0.0;
+    //! The largest |I| or |Q| of the window's samples as received (before any carrier
+    //! is removed): the receiver's clipping shows here.
+    double peak = 0.0;
     //! the window_len samples from start, continuous carriers removed
     std::vector<std::complex<float>> samples;
 };

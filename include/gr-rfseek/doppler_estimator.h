@@ -126,6 +126,18 @@ public:
     virtual std::uint64_t discontinuity_count() const = 0;
     //! "acquire": the continuous carriers (interferers) found and removed, Hz.
     virtual std::vector<double> carriers() const = 0;
+    /*!
+     * The receiver's full scale in the input's units (1.0 for UHD, osmosdr and Soapy
+     * complex64; 0: unknown, no clipping check, the default). With it, each message
+     * carries peak_dbfs (the window's largest |I| or |Q| against full scale) and
+     * clipped: a window whose peak reaches -0.45 dBFS (95 % of full scale) was clipped
+     * or nearly so, and is never valid. GRC callback; a negative or non-finite value is
+     * a ValueError.
+     */
+    virtual void set_full_scale(double full_scale) = 0;
+    virtual double full_scale() const = 0;
+    //! Windows found clipped (full_scale > 0).
+    virtual std::uint64_t clipped_count() const = 0;
 };
 
 } // namespace rfseek

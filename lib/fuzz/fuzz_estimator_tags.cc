@@ -107,6 +107,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     } catch (const std::invalid_argument&) {
         return 0;
     }
+    if (fdp.ConsumeBool()) // the clipping check, at a full scale the tone may reach
+        est->set_full_scale(fdp.ConsumeFloatingPointInRange<double>(0.0, 4.0));
     auto tb = gr::make_top_block("fuzz_estimator_tags");
     auto src = gr::blocks::vector_source_c::make(x, false, 1, tags);
     auto dbg = gr::blocks::message_debug::make();

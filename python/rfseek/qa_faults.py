@@ -132,6 +132,44 @@ class qa_faults(gr_unittest.TestCase):
         self.assertAlmostEqual(meas[1]["time"], 7.514, places=9)
         self.assertEqual(est.truncated_count(), 1)
 
+    def test_a_clipped_window_is_never_valid(self):
+        # A tone at half of full scale, then one at 1.3 clipped by the ADC at 1.0 per
+        # component (I and Q, as a radio's converter does), in periodic windows; and the
+        # same under acquire, where the check reads the samples as received.
+        n = 20 * N
+        t = np.arange(n)
+        amp = np.where(t < n // 2, 0.5, 1.3)
+        x = amp * np.exp(2j * np.pi * 1500.0 * t / FS)
+        x = (np.clip(x.real, -1, 1) + 1j * np.clip(x.imag, -1, 1)).astype(np.complex64)
+        est, meas = self.run_tagged(x, [], alignment="periodic", period=N)
+        self.assertEqual(len(meas), 20)
+        self.assertNotIn("clipped", meas[0])  # full scale unknown: no check
+        self.assertTrue(all(m["valid"] for m in meas))
+        pulsed = np.where(t % (2 * N) < N, x, 0).astype(np.complex64)
+        for alignment, period, y in (("periodic", N, x), ("acquire", 2 * N, pulsed)):
+            tb = gr.top_block()
+            src = blocks.vector_source_c(y.tolist(), False)
+            est = rfseek.doppler_estimator(FS, N, 4096, alignment=alignment, period=period)
+            est.set_full_scale(1.0)
+            dbg = blocks.message_debug()
+            tb.connect(src, est)
+            tb.msg_connect(est, "meas", dbg, "store")
+            tb.run()
+            meas = [pmt.to_python(dbg.get_message(i)) for i in range(dbg.num_messages())]
+            self.assertGreater(len(meas), 5, alignment)
+            for m in meas:
+                clipped = m["offset"] + N > n // 2
+                self.assertEqual(m["clipped"], clipped, (alignment, m["offset"]))
+                if clipped:
+                    self.assertFalse(m["valid"])
+                    self.assertGreater(m["peak_dbfs"], -0.01)
+                else:
+                    self.assertAlmostEqual(m["peak_dbfs"], 20 * np.log10(0.5), delta=0.01)
+            self.assertEqual(est.clipped_count(), sum(m["clipped"] for m in meas))
+        for bad in (-1.0, float("nan"), float("inf")):
+            with self.assertRaisesRegex(ValueError, "full_scale"):
+                est.set_full_scale(bad)
+
     def test_the_controller_pairs_each_window_with_the_report_nearest_in_time(self):
         # Heading reports every 0.1 s of a turn at 0.5 rad/s, posted out of order, then
         # windows: at 0.53 s the heading is the reports' around it; at 2.5 s no report is

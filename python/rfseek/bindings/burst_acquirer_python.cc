@@ -4,7 +4,7 @@
  */
 
 /* BINDTOOL_HEADER_FILE(burst_acquirer.h) */
-/* BINDTOOL_HEADER_FILE_HASH(937215aaa3889b1b8ceb631c96df600b) */
+/* BINDTOOL_HEADER_FILE_HASH(4bfd3893991abb7f5ee5b75312e197e9) */
 
 #include <gr-rfseek/burst_acquirer.h>
 #include <pybind11/complex.h>
@@ -86,6 +86,9 @@ void bind_burst_acquirer(py::module& m)
                       "edges: the configured band)")
         .def_readonly(
             "max_freq_hz", &acquired_window::max_freq_hz, "the band's upper edge")
+        .def_readonly("peak",
+                      &acquired_window::peak,
+                      "the largest |I| or |Q| of the samples as received")
         .def_property_readonly(
             "samples",
             [](const acquired_window& w) {

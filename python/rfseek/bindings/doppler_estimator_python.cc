@@ -4,7 +4,7 @@
  */
 
 /* BINDTOOL_HEADER_FILE(doppler_estimator.h) */
-/* BINDTOOL_HEADER_FILE_HASH(530496177468ca61b35723ae7b492f0f) */
+/* BINDTOOL_HEADER_FILE_HASH(29152da57febce08b08eaca59055c09f) */
 
 #include <gr-rfseek/doppler_estimator.h>
 #include <pybind11/pybind11.h>
@@ -166,5 +166,16 @@ void bind_doppler_estimator(py::module& m)
              "clock set back).")
         .def("carriers",
              &doppler_estimator::carriers,
-             "'acquire': the continuous carriers (interferers) found and removed, Hz.");
+             "'acquire': the continuous carriers (interferers) found and removed, Hz.")
+        .def("set_full_scale",
+             &doppler_estimator::set_full_scale,
+             py::arg("full_scale"),
+             "The receiver's full scale in the input's units (1.0 for radios' complex64; "
+             "0: no clipping check). Windows peaking at 95 % of it are clipped and never "
+             "valid; messages carry peak_dbfs and clipped (GRC callback).")
+        .def(
+            "full_scale", &doppler_estimator::full_scale, "The full scale set (0: none).")
+        .def("clipped_count",
+             &doppler_estimator::clipped_count,
+             "Windows found clipped (full_scale > 0).");
 }

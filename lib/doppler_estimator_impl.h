@@ -13,10 +13,20 @@
 #include <gr-rfseek/doppler_estimator.h>
 #include <gr-rfseek/tone_estimator.h>
 #include <memory>
+#include <stdexcept>
+#include <string>
 #include <vector>
 
 namespace gr {
 namespace rfseek {
+
+//! std::invalid_argument naming pfa unless 0 (no test) or in [1e-12, 0.5].
+inline void check_pfa(double pfa)
+{
+    if (!(pfa == 0.0 || (pfa >= 1e-12 && pfa <= 0.5)))
+        throw std::invalid_argument("doppler_estimator: pfa = " + std::to_string(pfa) +
+                                    ": must be 0 (no detection test) or in [1e-12, 0.5]");
+}
 
 class doppler_estimator_impl : public doppler_estimator
 {

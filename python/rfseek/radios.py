@@ -361,6 +361,11 @@ class radio_source(gr.hier_block2):
     def granted_rate(self):
         return self.chain.granted_rate
 
+    def full_scale(self):
+        """The device's full scale in the output's units (complex64 from the drivers:
+        1.0; the chain's filter passes the beacon at unit gain)."""
+        return 1.0
+
     def band(self):
         return self.settings.band_hz
 
@@ -429,6 +434,7 @@ class sim_radio(gr.hier_block2):
         # rx_rate as the device would tag its stream: the device rate.
         blocks_in.append(rate_retag(rate, interp))
         self.stages = blocks_in
+        self.full_scale = full_scale  # the ADC's, in the input's units
         self.connect(self, *blocks_in, self)
 
 

@@ -82,6 +82,10 @@ class rehearsal_source(gr.hier_block2):
     def band(self):
         return self.settings.band_hz
 
+    def full_scale(self):
+        """The simulated radio's ADC full scale in the output's units."""
+        return self.radio.full_scale
+
     def late_count(self):
         return self.world.late_count()
 

@@ -54,109 +54,13 @@ make_checked(double samp_rate,
                                                pfa);
 }
 
-} // namespace
-
-void bind_doppler_estimator(py::module& m)
+template <class Class>
+void bind_receiver_faults(Class& cls)
 {
     using gr::rfseek::doppler_estimator;
-    py::class_<doppler_estimator,
-               gr::sync_block,
-               gr::block,
-               gr::basic_block,
-               std::shared_ptr<doppler_estimator>>(
-        m,
-        "doppler_estimator",
-        "Windowed, zero-padded FFT frequency estimator: one 'meas' message per window.")
-        .def(py::init(&make_checked),
-             py::arg("samp_rate"),
-             py::arg("window_len"),
-             py::arg("fft_len"),
-             py::arg("window") = "rectangular",
-             py::arg("interpolator") = "parabolic",
-             py::arg("alignment") = "tag",
-             py::arg("tag_key") = "rfseek_beacon",
-             py::arg("period") = 0,
-             py::arg("offset") = 0,
-             py::arg("min_freq") = 0.0,
-             py::arg("max_freq") = 0.0,
-             py::arg("threshold_db") = 2.0,
-             py::arg("pfa") = 0.0,
-             "\\param samp_rate sample rate (Hz, > 0) \\param window_len N samples per "
-             "window (3 <= N <= fft_len) \\param fft_len N_FFT (>= 4) \\param window "
-             "\"rectangular\", \"hann\" or \"blackman_harris\" \\param interpolator "
-             "\"parabolic\" (paper eq. 3), \"newton\" (ML) or \"log_parabolic\" \\param "
-             "alignment \"tag\", \"periodic\", \"energy\" or \"acquire\" \\param "
-             "tag_key key of the aligning tags (alignment \"tag\") \\param period "
-             "samples between window starts (alignment \"periodic\", >= window_len; "
-             "\"acquire\": the beacon's nominal period, > window_len) \\param offset "
-             "first window "
-             "start (alignment \"periodic\", >= 0) \\param min_freq, max_freq search "
-             "band in Hz; equal values search the whole band \\param threshold_db burst "
-             "detection level over the noise floor (alignment        \"energy\", > 0 dB) "
-             "\\param pfa false-alarm probability of the per-window detection test: 0 "
-             "(no test) or in [1e-12, 0.5]; \"acquire\" always tests (0 means 1e-3)")
-        .def("window", &doppler_estimator::window, "The window's name.")
-        .def("interpolator",
-             &doppler_estimator::interpolator,
-             "The peak interpolator's name.")
-        .def("alignment",
-             &doppler_estimator::alignment,
-             "How windows are found: 'tag', 'periodic', 'energy' or 'acquire'.")
-        .def("min_freq",
-             &doppler_estimator::min_freq,
-             "Lower edge of the search band (Hz).")
-        .def("max_freq",
-             &doppler_estimator::max_freq,
-             "Upper edge of the search band (Hz).")
-        .def("window_count",
-             &doppler_estimator::window_count,
-             "Windows measured / of them invalid / of them cut short by the next tag.")
-        .def("invalid_count",
-             &doppler_estimator::invalid_count,
-             "Windows whose estimate was not valid.")
-        .def("truncated_count",
-             &doppler_estimator::truncated_count,
-             "Windows cut short by the end of the stream or a new burst.")
-        .def("set_window",
-             &doppler_estimator::set_window,
-             py::arg("window"),
-             "Change the window (GRC callback).")
-        .def("set_interpolator",
-             &doppler_estimator::set_interpolator,
-             py::arg("interpolator"),
-             "Change the peak interpolator (GRC callback).")
-        .def("threshold_db",
-             &doppler_estimator::threshold_db,
-             "Burst detection level over the noise floor (dB, alignment 'energy').")
-        .def("set_threshold_db",
-             &doppler_estimator::set_threshold_db,
-             py::arg("threshold_db"),
-             "Change the burst detection level (dB).")
-        .def("set_band",
-             &doppler_estimator::set_band,
-             py::arg("min_freq"),
-             py::arg("max_freq"),
-             "Search only [min, max] Hz (GRC callback; equal values: the whole band).")
-        .def("samp_rate",
-             &doppler_estimator::samp_rate,
-             "The rate frequencies are measured at (Hz): samp_rate, or the latest "
-             "rx_rate tag's or set_samp_rate's.")
-        .def("set_samp_rate",
-             &doppler_estimator::set_samp_rate,
-             py::arg("samp_rate"),
-             "A new sample rate (> 0; the search band must still fit), e.g. the rate a "
-             "device granted (GRC callback). Raises ValueError naming it.")
-        .def("pfa",
-             &doppler_estimator::pfa,
-             "Detection test's false-alarm probability (0: no test).")
-        .def("set_pfa",
-             &doppler_estimator::set_pfa,
-             py::arg("pfa"),
-             "0 turns the test off (not under 'acquire'); else in [1e-12, 0.5] (GRC "
-             "callback).")
-        .def("acquire_state",
-             &doppler_estimator::acquire_state,
-             "'acquire': 'search', 'confirm' or 'locked'; other alignments: ''.")
+    cls.def("acquire_state",
+            &doppler_estimator::acquire_state,
+            "'acquire': 'search', 'confirm' or 'locked'; other alignments: ''.")
         .def("period_estimate",
              &doppler_estimator::period_estimate,
              "'acquire': the burst period the timing loop tracks (samples); else period.")
@@ -178,4 +82,117 @@ void bind_doppler_estimator(py::module& m)
         .def("clipped_count",
              &doppler_estimator::clipped_count,
              "Windows found clipped (full_scale > 0).");
+}
+
+} // namespace
+
+void bind_doppler_estimator(py::module& m)
+{
+    using gr::rfseek::doppler_estimator;
+    auto cls =
+        py::class_<doppler_estimator,
+                   gr::sync_block,
+                   gr::block,
+                   gr::basic_block,
+                   std::shared_ptr<doppler_estimator>>(
+            m,
+            "doppler_estimator",
+            "Windowed, zero-padded FFT frequency estimator: one 'meas' message per "
+            "window.")
+            .def(
+                py::init(&make_checked),
+                py::arg("samp_rate"),
+                py::arg("window_len"),
+                py::arg("fft_len"),
+                py::arg("window") = "rectangular",
+                py::arg("interpolator") = "parabolic",
+                py::arg("alignment") = "tag",
+                py::arg("tag_key") = "rfseek_beacon",
+                py::arg("period") = 0,
+                py::arg("offset") = 0,
+                py::arg("min_freq") = 0.0,
+                py::arg("max_freq") = 0.0,
+                py::arg("threshold_db") = 2.0,
+                py::arg("pfa") = 0.0,
+                "\\param samp_rate sample rate (Hz, > 0) \\param window_len N samples "
+                "per "
+                "window (3 <= N <= fft_len) \\param fft_len N_FFT (>= 4) \\param window "
+                "\"rectangular\", \"hann\" or \"blackman_harris\" \\param interpolator "
+                "\"parabolic\" (paper eq. 3), \"newton\" (ML) or \"log_parabolic\" "
+                "\\param "
+                "alignment \"tag\", \"periodic\", \"energy\" or \"acquire\" \\param "
+                "tag_key key of the aligning tags (alignment \"tag\") \\param period "
+                "samples between window starts (alignment \"periodic\", >= window_len; "
+                "\"acquire\": the beacon's nominal period, > window_len) \\param offset "
+                "first window "
+                "start (alignment \"periodic\", >= 0) \\param min_freq, max_freq search "
+                "band in Hz; equal values search the whole band \\param threshold_db "
+                "burst "
+                "detection level over the noise floor (alignment        \"energy\", > 0 "
+                "dB) "
+                "\\param pfa false-alarm probability of the per-window detection test: 0 "
+                "(no test) or in [1e-12, 0.5]; \"acquire\" always tests (0 means 1e-3)")
+            .def("window", &doppler_estimator::window, "The window's name.")
+            .def("interpolator",
+                 &doppler_estimator::interpolator,
+                 "The peak interpolator's name.")
+            .def("alignment",
+                 &doppler_estimator::alignment,
+                 "How windows are found: 'tag', 'periodic', 'energy' or 'acquire'.")
+            .def("min_freq",
+                 &doppler_estimator::min_freq,
+                 "Lower edge of the search band (Hz).")
+            .def("max_freq",
+                 &doppler_estimator::max_freq,
+                 "Upper edge of the search band (Hz).")
+            .def(
+                "window_count",
+                &doppler_estimator::window_count,
+                "Windows measured / of them invalid / of them cut short by the next tag.")
+            .def("invalid_count",
+                 &doppler_estimator::invalid_count,
+                 "Windows whose estimate was not valid.")
+            .def("truncated_count",
+                 &doppler_estimator::truncated_count,
+                 "Windows cut short by the end of the stream or a new burst.")
+            .def("set_window",
+                 &doppler_estimator::set_window,
+                 py::arg("window"),
+                 "Change the window (GRC callback).")
+            .def("set_interpolator",
+                 &doppler_estimator::set_interpolator,
+                 py::arg("interpolator"),
+                 "Change the peak interpolator (GRC callback).")
+            .def("threshold_db",
+                 &doppler_estimator::threshold_db,
+                 "Burst detection level over the noise floor (dB, alignment 'energy').")
+            .def("set_threshold_db",
+                 &doppler_estimator::set_threshold_db,
+                 py::arg("threshold_db"),
+                 "Change the burst detection level (dB).")
+            .def(
+                "set_band",
+                &doppler_estimator::set_band,
+                py::arg("min_freq"),
+                py::arg("max_freq"),
+                "Search only [min, max] Hz (GRC callback; equal values: the whole band).")
+            .def("samp_rate",
+                 &doppler_estimator::samp_rate,
+                 "The rate frequencies are measured at (Hz): samp_rate, or the latest "
+                 "rx_rate tag's or set_samp_rate's.")
+            .def("set_samp_rate",
+                 &doppler_estimator::set_samp_rate,
+                 py::arg("samp_rate"),
+                 "A new sample rate (> 0; the search band must still fit), e.g. the rate "
+                 "a "
+                 "device granted (GRC callback). Raises ValueError naming it.")
+            .def("pfa",
+                 &doppler_estimator::pfa,
+                 "Detection test's false-alarm probability (0: no test).")
+            .def("set_pfa",
+                 &doppler_estimator::set_pfa,
+                 py::arg("pfa"),
+                 "0 turns the test off (not under 'acquire'); else in [1e-12, 0.5] (GRC "
+                 "callback).");
+    bind_receiver_faults(cls);
 }

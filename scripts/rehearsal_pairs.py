@@ -17,7 +17,7 @@ For each seed, rfseek-live --source sim flies the same scenario twice, paced to
            IQ imbalance, quantisation) through the receive chain of a live radio, its
            timing acquired (alignment acquire), the heading from the vehicle's reports.
 With --fault "ARGS" both flights go --via, the second with rfseek-live's ARGS added (a
-fault: --fault "--nav-fault 0.3,0,2"), so the pair is the fault's cost.
+fault: --fault "--fault nav:0.3,0,2"), so the pair is the fault's cost.
 It prints the distance flown (as a ratio to the start distance) of each and the paired
 difference, with its mean and standard error.
 

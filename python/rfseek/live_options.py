@@ -32,10 +32,10 @@ def refuse_unused(args, serving=False):
         why = "the radio's settings belong to the --zmq-serve process"
     else:
         return
-    if getattr(args, "nav_fault", None) and not (serving or (args.source == "sim" and
-                                                              args.radio)):
-        raise ValueError("--nav-fault: only in a rehearsal (--source sim --radio FAMILY, "
-                         "or --zmq-serve), where the heading reports are simulated")
+    if getattr(args, "fault", None) and not (serving or (args.source == "sim" and
+                                                          args.radio)):
+        raise ValueError("--fault: only in a rehearsal (--source sim --radio FAMILY, "
+                         "or --zmq-serve), where the radio and the vehicle are simulated")
     unused = [flag for flag, value in given.items() if value is not None]
     if unused:
         raise ValueError("%s: not used %s: %s" % (
@@ -43,18 +43,25 @@ def refuse_unused(args, serving=False):
             "with --source %s" % args.source, why))
 
 
-def nav_fault(text):
-    """--nav-fault DELAY[,JITTER[,DROPOUT[,EVERY]]] (seconds) -> state_to_nav's faults."""
+def fault(text):
+    """--fault nav:DELAY[,JITTER[,DROPOUT[,EVERY]]] (seconds; state_to_nav's faults) or
+    overflow:EVERY[,LOST] (LOST samples, 3000 by default, lost every EVERY s; the
+    rehearsal's overflow_injector) -> (kind, keyword arguments)."""
+    kind, _, values = text.partition(":")
     try:
-        v = [float(x) for x in text.split(",")]
+        v = [float(x) for x in values.split(",")]
     except ValueError:
         v = []
-    if not 1 <= len(v) <= 4 or not all(math.isfinite(x) and x >= 0 for x in v) or \
-            (len(v) == 4 and not v[2] < v[3]) or (len(v) == 3 and not v[2] < 20.0):
-        raise argparse.ArgumentTypeError(
-            "%r: must be DELAY[,JITTER[,DROPOUT[,EVERY]]], seconds >= 0 (a dropout "
-            "shorter than its period, 20 s by default)" % text)
-    return dict(zip(("delay_s", "jitter_s", "dropout_s", "dropout_every_s"), v))
+    ok = bool(v) and all(math.isfinite(x) and x >= 0 for x in v)
+    if kind == "nav" and ok and len(v) <= 4 and (len(v) < 3 or v[2] < (v[3] if len(v) == 4
+                                                                       else 20.0)):
+        return kind, dict(zip(("delay_s", "jitter_s", "dropout_s", "dropout_every_s"), v))
+    if kind == "overflow" and ok and len(v) <= 2 and v[0] > 0 and (len(v) < 2 or v[1] >= 1):
+        return kind, dict(zip(("every_s", "lost"), v))
+    raise argparse.ArgumentTypeError(
+        "%r: must be nav:DELAY[,JITTER[,DROPOUT[,EVERY]]] (seconds >= 0, a dropout shorter "
+        "than its period, 20 s by default) or overflow:EVERY[,LOST] (EVERY > 0 s, LOST >= 1 "
+        "samples)" % text)
 
 
 def split_sets(args, rfseek):

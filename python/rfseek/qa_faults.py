@@ -170,6 +170,34 @@ class qa_faults(gr_unittest.TestCase):
             with self.assertRaisesRegex(ValueError, "full_scale"):
                 est.set_full_scale(bad)
 
+    def test_the_rehearsals_overflow_injector(self):
+        # A ramp through the injector: 3000 samples lost every 20 s (at 1 kS/s), each
+        # gap's next sample tagged with its true time; the estimator counts each one.
+        from gnuradio.rfseek.rehearsal import overflow_injector
+        from gnuradio.rfseek.live_options import fault
+        x = np.arange(100_000).astype(np.complex64)
+        tb = gr.top_block()
+        src = blocks.vector_source_c(x.tolist(), False)
+        inj = overflow_injector(1000.0, **fault("overflow:20,3000")[1], seed=3)
+        snk = blocks.vector_sink_c()
+        est = rfseek.doppler_estimator(1000.0, 64, 64, alignment="periodic", period=100)
+        tb.connect(src, inj, snk)
+        tb.connect(inj, est)
+        tb.run()
+        y = np.array(snk.data()).real
+        self.assertEqual(inj.overflows, 4)
+        self.assertEqual(len(y), 100_000 - 4 * 3000)
+        jumps = np.nonzero(np.diff(y) != 1)[0] + 1
+        self.assertTrue(np.all(np.diff(y)[jumps - 1] == 3001))
+        times = {t.offset: pmt.to_python(t.value) for t in snk.tags()
+                 if pmt.symbol_to_string(t.key) == "rx_time"}
+        self.assertEqual(sorted(times), [0] + list(jumps))
+        for k, (secs, frac) in times.items():
+            self.assertAlmostEqual(secs + frac, y[k] / 1000.0, places=9)
+        self.assertEqual(est.discontinuity_count(), 4)
+        with self.assertRaises(Exception):
+            fault("overflow:0")
+
     def test_the_controller_pairs_each_window_with_the_report_nearest_in_time(self):
         # Heading reports every 0.1 s of a turn at 0.5 rad/s, posted out of order, then
         # windows: at 0.53 s the heading is the reports' around it; at 2.5 s no report is

@@ -21,10 +21,66 @@ would see live. The vehicle's heading reaches the controller as a vehicle's repo
 ``--source zmq --zmq ADDR`` the two halves (docs/live.md "Rehearsals").
 """
 
+import math
+
+import numpy
+import pmt
 from gnuradio import gr
 
 from .flowgraphs import state_to_nav
 from .radios import radio_rx_chain, rx_plan, sim_radio
+
+
+class overflow_injector(gr.basic_block):
+    """A receiver's overflows: `lost` samples dropped every `every_s` seconds (the first
+    after one period, each at a random point of its period drawn from `seed`), and the
+    next sample tagged with its true rx_time, as UHD does after an "O". rx_time at the
+    first sample is 0 (the stream's clock); other tags pass at their new places. Counts:
+    overflows, lost_samples."""
+
+    def __init__(self, samp_rate, every_s=10.0, lost=3000, seed=0):
+        gr.basic_block.__init__(self, "overflow_injector", [numpy.complex64],
+                                [numpy.complex64])
+        if not (math.isfinite(samp_rate) and samp_rate > 0):
+            raise ValueError("overflow_injector: samp_rate = %r: must be > 0" % samp_rate)
+        if not (math.isfinite(every_s) and every_s > 0 and 1 <= lost < every_s * samp_rate):
+            raise ValueError("overflow_injector: every_s = %r, lost = %r: every_s must be "
+                             "> 0 and lost in [1, every_s x samp_rate)" % (every_s, lost))
+        self.set_tag_propagation_policy(gr.TPP_DONT)
+        self.rate, self.every = float(samp_rate), int(round(every_s * samp_rate))
+        self.lost = int(lost)
+        self._rng = numpy.random.default_rng(seed)
+        self._next = self._draw(1)
+        self.overflows = self.lost_samples = 0
+        self._tag_time = True  # rx_time due at the next output sample
+        self._time = pmt.intern("rx_time")
+
+    def _draw(self, k):
+        return k * self.every + int(self._rng.integers(0, self.every - self.lost))
+
+    def general_work(self, input_items, output_items):
+        x, y = input_items[0], output_items[0]
+        n_in, n_out = self.nitems_read(0), self.nitems_written(0)
+        if n_in >= self._next:  # inside a drop: consumed, nothing out
+            k = min(self._next + self.lost - n_in, len(x))
+            self.consume(0, k)
+            if n_in + k == self._next + self.lost:
+                self.overflows += 1
+                self.lost_samples += self.lost
+                self._next = self._draw(self.overflows + 1)
+                self._tag_time = True
+            return 0
+        k = min(len(x), len(y), self._next - n_in)
+        y[:k] = x[:k]
+        for t in self.get_tags_in_window(0, 0, k):
+            self.add_item_tag(0, n_out + t.offset - n_in, t.key, t.value)
+        if self._tag_time and k > 0:
+            secs = n_in / self.rate
+            self.add_item_tag(0, n_out, self._time, pmt.make_tuple(
+                pmt.from_uint64(int(secs)), pmt.from_double(secs - int(secs))))
+            self._tag_time = False
+        self.consume(0, k)
+        return k
 
 
 def rehearsal_plan(sc, family, lo_offset=None, device_rate=None):
@@ -53,10 +109,11 @@ class rehearsal_source(gr.hier_block2):
     """The world's beacon through a simulated `family` radio and the receive chain:
     output at the world's rate (with rx_rate), message ports cmd (in; to the world),
     state (out; the world's truth, for logs) and nav (out; heading reports for the
-    controller; nav_faults: state_to_nav's link faults, e.g. {"delay_s": 0.3})."""
+    controller). faults: (kind, arguments) pairs, as rfseek-live --fault gives them:
+    ("nav", state_to_nav's link faults), ("overflow", overflow_injector's)."""
 
     def __init__(self, sc, family, speedup=1.0, realtime=True, lo_offset=None,
-                 device_rate=None, nav_faults=None, **impairments):
+                 device_rate=None, faults=None, **impairments):
         gr.hier_block2.__init__(self, "rehearsal_source", gr.io_signature(0, 0, 0),
                                 gr.io_signature(1, 1, gr.sizeof_gr_complex))
         self.settings = rehearsal_plan(sc, family, lo_offset, device_rate)
@@ -65,8 +122,14 @@ class rehearsal_source(gr.hier_block2):
                                **impairments)
         from .radios import radio_for
         self.chain = radio_rx_chain(self.settings, None, radio_for(family).ddc)
-        self.nav = state_to_nav(**(nav_faults or {}))
-        self.connect(self.world, self.radio, self.chain, self)
+        faults = dict(faults or [])
+        self.nav = state_to_nav(**faults.get("nav", {}))
+        stages = [self.world, self.radio, self.chain]
+        if "overflow" in faults:  # (at the estimator's rate: the tags' places are exact)
+            self.overflow = overflow_injector(self.chain.out_rate(), seed=sc.seed,
+                                              **faults["overflow"])
+            stages.append(self.overflow)
+        self.connect(*stages, self)
         for port in ("cmd",):
             self.message_port_register_hier_in(port)
             self.msg_connect(self, port, self.world, port)
@@ -113,7 +176,7 @@ class beacon_side(gr.top_block):
     ZeroMQ (samples with their tags at `address`, heading reports at the next port), the
     controller's commands pulled from the port after. Ends when the world does."""
 
-    def __init__(self, sc, family, address, speedup=1.0, realtime=True, nav_faults=None,
+    def __init__(self, sc, family, address, speedup=1.0, realtime=True, faults=None,
                  **impairments):
         gr.top_block.__init__(self, "rfseek beacon side")
         from gnuradio import zeromq
@@ -123,7 +186,11 @@ class beacon_side(gr.top_block):
         self.radio = sim_radio(self.settings, sc.samp_rate_hz, _noise_rms(sc),
                                **impairments)
         self.push = zeromq.push_sink(gr.sizeof_gr_complex, 1, samples, 100, True, -1)
-        self.nav = state_to_nav(**(nav_faults or {}))
+        faults = dict(faults or [])
+        if "overflow" in faults:
+            raise ValueError("--fault overflow: in a one-process rehearsal (--source sim "
+                             "--radio FAMILY), not served over ZeroMQ")
+        self.nav = state_to_nav(**faults.get("nav", {}))
         self.nav_out = zeromq.push_msg_sink(nav, 100, True)
         self.cmd_in = zeromq.pull_msg_source(cmd, 100, True)
         self.connect(self.world, self.radio, self.push)

@@ -14,6 +14,12 @@
 namespace gr {
 namespace rfseek {
 
+namespace {
+// A report on the measurements' clock is at most 1.5 s behind the latest window (a late
+// link and the receiver's own latency) and never more than 0.25 s ahead of it.
+bool on_our_clock(double behind_s) { return behind_s >= -0.25 && behind_s <= 1.5; }
+} // namespace
+
 void nav_history::insert(double t, double heading)
 {
     const entry e{ t, heading, d_order++ };
@@ -42,7 +48,7 @@ void nav_history::report(double heading_rad, bool has_time, double time)
         insert(d_latest, heading_rad);
         return;
     }
-    if (d_have_meas && !d_foreign && std::abs(d_latest - time) > 5.0) {
+    if (d_have_meas && !d_foreign && !on_our_clock(d_latest - time)) {
         d_foreign = true;
         d_reports.clear(); // (timed as if on the measurements' clock: they were not)
     }
@@ -66,7 +72,9 @@ void nav_history::measured(double time)
     d_have_meas = true;
     // Timed reports before the first window, on another clock: the newest is taken as
     // now, and the others keep their spacing from it.
-    if (first && !d_reports.empty() && std::abs(d_reports.back().t - time) > 5.0) {
+    // (Reports before the first window can be ahead of it by the receiver's latency and
+    // more: only a clock far off is foreign here.)
+    if (first && !d_reports.empty() && std::abs(time - d_reports.back().t) > 5.0) {
         d_foreign = true;
         const double shift = time - d_reports.back().t;
         d_diffs.push_back(shift);

@@ -21,7 +21,7 @@ using namespace gr::rfseek;
 TEST(nav_history, the_report_nearest_in_time_interpolated_and_in_order)
 {
     nav_history h;
-    h.measured(10.0);
+    h.measured(10.5);
     // Reports every 0.1 s of a turn at 0.5 rad/s, the one at 10.3 s arriving last.
     for (const double t : { 10.0, 10.1, 10.2, 10.4, 10.5, 10.3 })
         h.report(0.5 * (t - 10.0), true, t);
@@ -42,6 +42,10 @@ TEST(nav_history, the_report_nearest_in_time_interpolated_and_in_order)
     EXPECT_NEAR(p.offset_s, -0.7, 1e-12);
     EXPECT_FALSE(h.at(11.6).found);
     EXPECT_FALSE(h.foreign_clock());
+    // A report 2 s behind the latest window is on another clock.
+    h.measured(12.6);
+    h.report(0.0, true, 10.6);
+    EXPECT_TRUE(h.foreign_clock());
 }
 
 TEST(nav_history, a_silent_link_leaves_windows_without_a_heading)

@@ -28,6 +28,13 @@ BUILD = os.environ.get("RFSEEK_BUILD_DIR", os.path.join(SOURCE, "build"))
 NAN, INF = float("nan"), float("inf")
 
 
+def _config(**kw):
+    c = rfseek.burst_acquirer_config()
+    for k, v in kw.items():
+        setattr(c, k, v)
+    return c
+
+
 def raises(fn, word):
     """fn() raises ValueError whose text names word."""
     def check(tc):
@@ -211,6 +218,16 @@ ROWS = [
      lambda tc: [raises(lambda: rfseek.channel_source(rfseek.scenario(), mode="bogus"), "mode")(tc),
                  raises(lambda: rfseek.channel_source(rfseek.scenario(), speedup=NAN), "speedup")(tc),
                  raises(lambda: rfseek.channel_source(rfseek.scenario(window_len=2)), "window_len")(tc)]),
+    ("parameters", "`doppler_estimator.set_full_scale(-1)`, `state_to_nav(delay_s=nan)`, `overflow_injector(lost=0)`, `burst_acquirer_config(track_bins=-1)`",
+     "ValueError naming the parameter and its range",
+     lambda tc: [raises(lambda: rfseek.doppler_estimator(1e5, 100, 128).set_full_scale(-1),
+                        "full_scale")(tc),
+                 raises(lambda: __import__("gnuradio.rfseek.flowgraphs", fromlist=["x"])
+                        .state_to_nav(delay_s=NAN), "delay_s")(tc),
+                 raises(lambda: __import__("gnuradio.rfseek.rehearsal", fromlist=["x"])
+                        .overflow_injector(1e5, lost=0), "lost")(tc),
+                 raises(lambda: rfseek.burst_acquirer(
+                     1e5, _config(track_bins=-1)), "track_bins")(tc)]),
     ("parameters", "`burst_detector(threshold_db=nan)`, `average_len=1`",
      "ValueError naming the parameter and its range",
      lambda tc: [raises(lambda: rfseek.burst_detector(NAN), "threshold_db")(tc),

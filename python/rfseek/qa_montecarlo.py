@@ -178,29 +178,28 @@ class qa_montecarlo(gr_unittest.TestCase):
 
     def test_arrival_self_windy(self):
         # The windy preset (6 m/s wind, 2 m/s gusts of 15 s, compass, altimeter and
-        # airspeed errors) with the locator's defaults, 30 adaptive runs at relaxed
+        # airspeed errors) with the locator's defaults, 20 adaptive runs at relaxed
         # bounds. Gusts there drop the Doppler like an overflight kilometres out; the
         # first orbit's far-field amplitude (arrival_far_amplitude) sends the vehicle on
         # at once, where without it each such loiter costs minutes of flight.
         rows = {}
         for name, extra in (("check", []),
                             ("nocheck", ["--set", "arrival_far_amplitude=0"])):
-            p, out = run_mc(self.tmp, "windy_" + name, "--runs", "30", "--strategy",
+            p, out = run_mc(self.tmp, "windy_" + name, "--runs", "20", "--strategy",
                             "adaptive", "--preset", "windy", "--arrival", "self",
                             "--threads", "2", "--quiet", *extra)
             self.assertEqual(p.returncode, 0, p.stderr)
             rows[name] = json.load(open(out))["rows"]
-            self.assertEqual(len(rows[name]), 30)
+            self.assertEqual(len(rows[name]), 20)
         r = rows["check"]
-        self.assertGreaterEqual(sum(x["success"] for x in r), 28)
-        self.assertLessEqual(sum(x["false_arrival"] for x in r), 3)
+        self.assertGreaterEqual(sum(x["success"] for x in r), 18)
+        self.assertLessEqual(sum(x["false_arrival"] for x in r), 2)
         near = [x for x in r if x["declared"] and x["arrival_detect_distance_m"] <= 300.0]
-        self.assertGreaterEqual(len(near), 15)
+        self.assertGreaterEqual(len(near), 10)
         # Seed by seed (the same flights up to the first false overflight): the check
-        # shortens more flights than it lengthens. The mean is not compared: in these
-        # gusts one chaotic flight in 30 can move it by 5 % either way (seed 23 flew
-        # 3.07 with the check and 1.71 without while 8 of the 11 flights that differ by
-        # more than 0.05 were shorter with it).
+        # shortens more flights than it lengthens (20 seeds: 6 shorter, none longer; 30
+        # seeds: 10 and none). The mean is not compared: in these gusts one chaotic
+        # flight can move it by 5 % either way.
         pairs = list(zip(sorted(rows["check"], key=lambda x: x["seed"]),
                          sorted(rows["nocheck"], key=lambda x: x["seed"])))
         shorter = sum(a["straight_ratio"] < b["straight_ratio"] - 0.02 for a, b in pairs)

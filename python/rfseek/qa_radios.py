@@ -185,6 +185,34 @@ class qa_radios(gr_unittest.TestCase):
             else:
                 self.assertLessEqual(rate, 0.01)  # pfa 1e-3: 0.3 expected of 300
 
+    def test_a_strong_beacon_clips_and_the_estimator_says_so(self):
+        # A tone 30 dB over the noise through an 8-bit radio (the noise 8 steps above
+        # zero, so full scale 24 dB above it) at gain 0 and at -20 dB: the first clips at
+        # the converter, and the estimator told the full scale finds every window
+        # clipped; 20 dB less gain leaves it clean and valid.
+        for gain_db, clipped in ((0.0, True), (-20.0, False)):
+            s = rfseek.rx_plan("rtlsdr", 915e6)
+            src = gr.hier_block2("src", gr.io_signature(0, 0, 0),
+                                 gr.io_signature(1, 1, gr.sizeof_gr_complex))
+            tone = analog.sig_source_c(s.device_rate, analog.GR_COS_WAVE,
+                                       1234.0, 10 ** (30 / 20), 0)
+            noise = analog.noise_source_c(analog.GR_GAUSSIAN, 1.0, 6)
+            add = blocks.add_cc()
+            radio = rfseek.sim_radio(s, in_rate=s.device_rate, noise_rms=1.0, dc=0.0)
+            radio.set_gain(gain_db)
+            chain = rfseek.radio_rx_chain(s, None, False)
+            src.connect(tone, (add, 0))
+            src.connect(noise, (add, 1))
+            src.connect(add, radio, chain, src)
+            est = rfseek.doppler_estimator(FS, N, NFFT, alignment="periodic", period=N,
+                                           pfa=1e-3)
+            est.set_full_scale(radio.full_scale)
+            meas = run(src, est, 50 * N)[2:]  # (after the filter's start)
+            self.assertEqual(all(m["clipped"] for m in meas), clipped, gain_db)
+            self.assertEqual(any(m["valid"] for m in meas), not clipped, gain_db)
+        with self.assertRaisesRegex(ValueError, "gain_db"):
+            radio.set_gain(float("nan"))
+
     def test_a_coerced_device_rate_is_followed(self):
         # An X3xx at 184.32 MHz asked for 1 MS/s gives 184.32e6 / 184; UHD tags the
         # stream's start with that rate. A tone 12 kHz off the beacon's nominal centre

@@ -390,10 +390,13 @@ class sim_radio(gr.hier_block2):
     Then quantisation to
     the family's ADC bits, the gain set so that the input's noise (`noise_rms`, per
     complex sample) is `noise_lsb` steps of the ADC (8: the noise floor 18 dB above the
-    quantisation's, as docs/live.md advises). Feed its output to radio_rx_chain(settings)."""
+    quantisation's, as docs/live.md advises) at gain_db 0. gain_db (set_gain at run time)
+    scales the beacon and its noise before the converter, as a radio's receive gain does:
+    a strong beacon clips at full scale (the converter saturates). Feed its output to
+    radio_rx_chain(settings)."""
 
     def __init__(self, settings, in_rate=100e3, noise_rms=1.0, noise_lsb=8.0,
-                 dc=0.05 + 0.03j, iq_gain_db=0.5, iq_phase_deg=2.0):
+                 dc=0.05 + 0.03j, iq_gain_db=0.5, iq_phase_deg=2.0, gain_db=0.0):
         gr.hier_block2.__init__(self, "sim_radio",
                                 gr.io_signature(1, 1, gr.sizeof_gr_complex),
                                 gr.io_signature(1, 1, gr.sizeof_gr_complex))
@@ -408,7 +411,9 @@ class sim_radio(gr.hier_block2):
         if interp < 1 or abs(interp * in_rate - settings.device_rate) > 1e-6 * rate:
             raise ValueError("in_rate = %.6g S/s: must divide the device rate %.6g S/s "
                              "by an integer" % (in_rate, settings.device_rate))
-        blocks_in = []
+        self.gain = blocks.multiply_const_cc(1.0)
+        self.set_gain(gain_db)
+        blocks_in = [self.gain]
         if interp > 1:
             taps = firdes.low_pass(interp, settings.device_rate, 0.5 * in_rate,
                                    0.1 * in_rate, window.WIN_BLACKMAN_HARRIS)
@@ -436,6 +441,14 @@ class sim_radio(gr.hier_block2):
         self.stages = blocks_in
         self.full_scale = full_scale  # the ADC's, in the input's units
         self.connect(self, *blocks_in, self)
+
+    def set_gain(self, gain_db):
+        """The receive gain relative to the one the noise level was set for (dB)."""
+        if not (isinstance(gain_db, (int, float)) and math.isfinite(gain_db) and
+                -100.0 <= gain_db <= 100.0):
+            raise ValueError("sim_radio: gain_db = %r: must be in [-100, 100] dB" % (gain_db,))
+        self.gain_db = float(gain_db)
+        self.gain.set_k(10.0 ** (self.gain_db / 20.0))
 
 
 def _hz(f):

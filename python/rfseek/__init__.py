@@ -38,7 +38,7 @@ from .meas_streams import meas_streams  # noqa: E402,F401
 _LAZY = {"seek_view": "seek_view", "replay_source": "sigmf", "sigmf_recorder": "sigmf",
          "pulsed_beacon": "pulsed_beacon", "RADIOS": "radios", "radio_for": "radios",
          "radio_rx_chain": "radios", "radio_source": "radios", "rx_plan": "radios",
-         "sim_radio": "radios"}
+         "sim_radio": "radios", "gain_loop": "gain_loop"}
 
 
 def __getattr__(name):

@@ -198,6 +198,45 @@ class qa_faults(gr_unittest.TestCase):
         with self.assertRaises(Exception):
             fault("overflow:0")
 
+    def test_the_gain_loop_keeps_the_beacon_below_full_scale(self):
+        # A beacon whose peak rises from -40 to +5 dBFS at the start gain over 45 s (the
+        # last kilometres: it would clip from 39.5 s on), then falls back; a radio whose
+        # gain moves the peak and the power dB for dB, applied 0.1 s after it is set.
+        from gnuradio.rfseek.gain_loop import gain_loop
+        radio = {"gain": 30.0, "pending": []}
+        now = [0.0]
+        out = []
+
+        class probe(gain_loop):
+            def message_port_pub(self, port, msg):
+                out.append(pmt.to_python(msg))
+
+        loop = probe(lambda g: radio["pending"].append((now[0] + 0.1, g)), 30.0, 0.0)
+        for k in range(2000):
+            t = now[0] = 0.05 * k
+            while radio["pending"] and radio["pending"][0][0] <= t:
+                radio["gain"] = radio["pending"].pop(0)[1]
+            level = -40.0 + min(t, 45.0) - max(0.0, t - 50.0)  # dBFS at gain 30
+            peak = level + radio["gain"] - 30.0
+            msg = {"time": t, "valid": True, "peak_dbfs": min(peak, 0.0), "clipped": peak >= -0.45,
+                   "power_db": level - 3.0 + radio["gain"] - 30.0, "noise_power_db": -50.0}
+            loop.on_meas(pmt.to_pmt(msg))
+        # Down as it rises, up as it falls.
+        self.assertTrue(any(b > a for _, b, a in loop.changes))
+        self.assertTrue(any(b < a for _, b, a in loop.changes))
+        for m in out:
+            if m["valid"]:
+                self.assertFalse(m["clipped"])
+                # The power referred to the start gain: the beacon's own, whatever the gain.
+                level = -40.0 + min(m["time"], 45.0) - max(0.0, m["time"] - 50.0)
+                self.assertAlmostEqual(m["power_db"], level - 3.0, places=9)
+        clipped = [m for m in out if m["clipped"]]
+        self.assertLessEqual(len(clipped), 3)
+        self.assertGreater(sum(m["valid"] for m in out), 0.95 * len(out))
+        self.assertEqual(loop.gain_db, 30.0)  # back at the start once it has fallen
+        with self.assertRaisesRegex(ValueError, "set_gain"):
+            gain_loop(None, 30.0, 0.0)
+
     def test_the_controller_pairs_each_window_with_the_report_nearest_in_time(self):
         # Heading reports every 0.1 s of a turn at 0.5 rad/s, posted out of order, then
         # windows: at 0.53 s the heading is the reports' around it; at 2.5 s no report is

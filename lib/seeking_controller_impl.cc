@@ -209,10 +209,34 @@ void seeking_controller_impl::handle_meas(const pmt::pmt_t& msg)
     // A window whose heading comes on nav waits (in order) for the report of its time:
     // a late link's reports come after the window is measured.
     d_pending.push_back(m);
+    d_pending_since.push_back(std::chrono::steady_clock::now());
     drain();
 }
 
-void seeking_controller_impl::drain()
+bool seeking_controller_impl::start()
+{
+    d_running = true;
+    d_watchdog = std::thread([this] {
+        while (d_running) {
+            std::this_thread::sleep_for(std::chrono::milliseconds(20));
+            gr::thread::scoped_lock lock(d_setlock);
+            drain(true);
+        }
+    });
+    return block::start();
+}
+
+bool seeking_controller_impl::stop()
+{
+    d_running = false;
+    if (d_watchdog.joinable())
+        d_watchdog.join();
+    gr::thread::scoped_lock lock(d_setlock);
+    drain(true); // (what waits is answered, not lost)
+    return block::stop();
+}
+
+void seeking_controller_impl::drain(bool watchdog)
 {
     const double half_slot = 0.5 * d_seeker->config().slot_period_s;
     while (!d_pending.empty()) {
@@ -223,10 +247,22 @@ void seeking_controller_impl::drain()
             m.has_heading || !d_nav.any() || !d_nav.timed() || !std::isfinite(m.time_s) ||
             d_nav.newest() >= m.time_s - half_slot ||
             d_nav.latest_measured() - m.time_s >= d_nav_wait_s || d_pending.size() > 256;
-        if (!ready)
+        // Waited 0.5 s of host time (a lockstep source waits for the cmd, or the link is
+        // slower than the world): answered with the reports there are.
+        const bool overdue =
+            watchdog && std::chrono::steady_clock::now() - d_pending_since.front() >
+                            std::chrono::milliseconds(500);
+        if (!ready && !overdue)
             return;
+        if (overdue && !ready && !d_logged_wait) {
+            d_logged_wait = true;
+            d_logger->info("a window waited 0.5 s for the nav report of its time (a "
+                           "lockstep source, or a link slower than the world): answered "
+                           "with the reports there are");
+        }
         const measurement next = m;
         d_pending.pop_front();
+        d_pending_since.pop_front();
         process(next);
     }
 }

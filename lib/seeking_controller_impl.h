@@ -9,9 +9,12 @@
 
 #include "nav_history.h"
 #include <gr-rfseek/seeking_controller.h>
+#include <atomic>
+#include <chrono>
 #include <deque>
 #include <memory>
 #include <set>
+#include <thread>
 
 namespace gr {
 namespace rfseek {
@@ -35,6 +38,8 @@ public:
     bool wait_for_heading() const override;
     std::uint64_t waiting_count() const override;
     std::uint64_t unpaired_count() const override;
+    bool start() override;
+    bool stop() override;
     emitter_location location() const override;
 
 private:
@@ -46,10 +51,16 @@ private:
     void handle_nav(const pmt::pmt_t& msg);
     // Measurements waiting for the nav report of their time (in order), and their
     // processing once it has come or nav_wait_s of later windows have.
-    void drain();
+    void drain(bool watchdog = false);
     void process(measurement m);
     std::deque<measurement> d_pending;
+    std::deque<std::chrono::steady_clock::time_point> d_pending_since;
     double d_nav_wait_s = 0.5;
+    // A window never waits more than 0.5 s of host time: a lockstep source makes the
+    // next window only after the cmd (a watchdog thread releases it).
+    std::thread d_watchdog;
+    std::atomic<bool> d_running{ false };
+    bool d_logged_wait = false;
     void drop(const std::string& port, const std::string& kind, const pmt::pmt_t& msg);
     // A meas forwarded from channel_source's beacon tag carries the world's "world"
     // dict: warns once for each of speed, carrier and slot period told otherwise.

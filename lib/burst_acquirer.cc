@@ -82,7 +82,7 @@ tone_detection burst_acquirer::test_at(std::uint64_t start, bool track)
     const auto* x = at(start);
     std::copy(x, x + d_cfg.window_len, d_scratch.begin());
     std::vector<double> share;
-    d_notch->apply(d_scratch.data(), d_scratch.size(), &share);
+    d_notch->apply(d_scratch.data(), d_scratch.size(), &share, d_state == state::search);
     equalize_blocks(d_scratch.data(),
                     d_scratch.size(),
                     std::max<std::size_t>(8, d_scratch.size() / 20));
@@ -267,6 +267,9 @@ acquired_window burst_acquirer::make_window(std::uint64_t start,
         const auto* x = at(start);
         w.samples.assign(x, x + d_cfg.window_len);
         d_notch->apply(w.samples.data(), w.samples.size());
+        equalize_blocks(w.samples.data(),
+                        w.samples.size(),
+                        std::max<std::size_t>(8, w.samples.size() / 20));
     }
     return w;
 }

@@ -45,21 +45,27 @@ bool carrier_notch::add(double freq_hz, double min_sep_hz)
     for (const double f : d_freqs)
         if (std::abs(std::remainder(f - freq_hz, d_fs)) < min_sep_hz)
             return false;
-    if (d_freqs.size() >= d_max)
+    if (d_freqs.size() >= d_max) {
         d_freqs.erase(d_freqs.begin());
+        d_home.erase(d_home.begin());
+    }
     d_freqs.push_back(freq_hz);
+    d_home.push_back(freq_hz);
     return true;
 }
 
 void carrier_notch::remove(std::size_t i)
 {
-    if (i < d_freqs.size())
+    if (i < d_freqs.size()) {
         d_freqs.erase(d_freqs.begin() + static_cast<std::ptrdiff_t>(i));
+        d_home.erase(d_home.begin() + static_cast<std::ptrdiff_t>(i));
+    }
 }
 
 void carrier_notch::apply(std::complex<float>* x,
                           std::size_t n,
-                          std::vector<double>* share)
+                          std::vector<double>* share,
+                          bool follow)
 {
     if (share)
         share->assign(d_freqs.size(), 0.0);
@@ -95,9 +101,13 @@ void carrier_notch::apply(std::complex<float>* x,
             x[i] -= std::complex<float>(r);
             r *= step;
         }
-        // Follow a drifting carrier while it is clearly there.
-        if (len * std::norm(a) > 10.0 * energy / len)
-            d_freqs[c] = std::remainder(w * d_fs / (2.0 * M_PI), d_fs);
+        // Follow a drifting carrier while it clearly dominates, within a bin of home.
+        if (follow && len * std::norm(a) > 0.3 * energy) {
+            const double bin = d_fs / len;
+            const double f = std::remainder(w * d_fs / (2.0 * M_PI), d_fs);
+            const double off = std::remainder(f - d_home[c], d_fs);
+            d_freqs[c] = std::remainder(d_home[c] + std::clamp(off, -bin, bin), d_fs);
+        }
     }
 }
 

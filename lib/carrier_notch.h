@@ -24,9 +24,11 @@ namespace rfseek {
  * periodogram within half a bin of the frequency held, by two parabolic steps) and its
  * complex exponential projected out: x_n -= a exp(j w n), a = (1/L) sum x_n exp(-j w n).
  * A carrier 40 dB above the noise in its bin leaves a residue near the noise: its
- * sidelobes, which would bury a beacon 20 dB weaker ten bins away, are gone. The
- * frequency held follows the refinement while the carrier is there (a drifting
- * interferer).
+ * sidelobes, which would bury a beacon 20 dB weaker ten bins away, are gone. With
+ * follow (the search's windows, which hold no beacon it has found), the frequency held
+ * follows a carrier that holds over 30 % of the stretch's energy (a drifting
+ * interferer), within a bin of where it was first held: a notch never walks onto a
+ * beacon.
  */
 class RFSEEK_API carrier_notch
 {
@@ -47,13 +49,16 @@ public:
      * fraction of the stretch's energy it held (L |a|^2 / sum |x|^2, before removal).
      * Non-finite samples are left alone (the stretch is not touched).
      */
-    void
-    apply(std::complex<float>* x, std::size_t n, std::vector<double>* share = nullptr);
+    void apply(std::complex<float>* x,
+               std::size_t n,
+               std::vector<double>* share = nullptr,
+               bool follow = false);
 
 private:
     double d_fs;
     std::size_t d_max;
     std::vector<double> d_freqs;
+    std::vector<double> d_home; // where each was first held
 };
 
 /*!

@@ -48,7 +48,9 @@ void nav_history::report(double heading_rad, bool has_time, double time)
         insert(d_latest, heading_rad);
         return;
     }
-    if (d_have_meas && !d_foreign && !on_our_clock(d_latest - time)) {
+    d_out_of_range =
+        d_have_meas && !on_our_clock(d_latest - time) ? d_out_of_range + 1 : 0;
+    if (!d_foreign && d_out_of_range >= 5) {
         d_foreign = true;
         d_reports.clear(); // (timed as if on the measurements' clock: they were not)
     }

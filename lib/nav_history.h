@@ -22,7 +22,8 @@ namespace rfseek {
  * A report's time on the measurements' clock:
  *  - its "time", when that is the measurements' clock: at most 1.5 s behind the latest
  *    measurement's time when it arrives and at most 0.25 s ahead (a simulated or
- *    rehearsed world, a radio and a link on one host clock);
+ *    rehearsed world, a radio and a link on one host clock); 5 reports in a row off it
+ *    make the clock foreign;
  *  - its "time" moved by the clocks' offset otherwise, learned as the least difference
  *    (latest measurement's time at arrival - report's time) over the last 64 reports:
  *    the fastest report sets the offset, and a late or out-of-order one is put back
@@ -73,6 +74,7 @@ private:
     std::deque<double> d_diffs;  // (latest meas - report time), foreign clock
     bool d_have_meas = false, d_foreign = false, d_have_pending = false;
     bool d_timed_last = false;
+    int d_out_of_range = 0; // timed reports in a row off the measurements' clock
     double d_latest = 0.0;
     double d_pending_heading = 0.0; // a report before any measurement, without a time
     std::uint64_t d_order = 0;

@@ -23,6 +23,12 @@ class seeking_controller_impl : public seeking_controller
 {
 public:
     explicit seeking_controller_impl(const seeker_config& cfg);
+    ~seeking_controller_impl() override
+    {
+        d_running = false;
+        if (d_watchdog.joinable())
+            d_watchdog.join();
+    }
 
     seeker_config config() const override;
     int stage() const override;

@@ -52,7 +52,9 @@ struct RFSEEK_API acquired_window {
     //! The largest |I| or |Q| of the window's samples as received (before any carrier
     //! is removed): the receiver's clipping shows here.
     double peak = 0.0;
-    //! the window_len samples from start, continuous carriers removed
+    //! the window_len samples from start, continuous carriers removed and wideband
+    //! bursts weighted down (equalize_blocks; power and SNR are those of the weighted
+    //! window)
     std::vector<std::complex<float>> samples;
 };
 

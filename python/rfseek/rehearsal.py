@@ -48,6 +48,9 @@ class overflow_injector(gr.basic_block):
                              "> 0 and lost in [1, every_s x samp_rate)" % (every_s, lost))
         self.set_tag_propagation_policy(gr.TPP_DONT)
         self.rate, self.every = float(samp_rate), int(round(every_s * samp_rate))
+        if not int(lost) < self.every:
+            raise ValueError("overflow_injector: lost = %r: must be below every_s x "
+                             "samp_rate = %d samples" % (lost, self.every))
         self.lost = int(lost)
         self._rng = numpy.random.default_rng(seed)
         self._next = self._draw(1)

@@ -4,7 +4,7 @@
  */
 
 /* BINDTOOL_HEADER_FILE(burst_acquirer.h) */
-/* BINDTOOL_HEADER_FILE_HASH(4bfd3893991abb7f5ee5b75312e197e9) */
+/* BINDTOOL_HEADER_FILE_HASH(c1ee8e7752fb8aba2ca6e4fd06cfcbd2) */
 
 #include <gr-rfseek/burst_acquirer.h>
 #include <pybind11/complex.h>

@@ -15,9 +15,9 @@ namespace gr {
 namespace rfseek {
 
 namespace {
-// A report on the measurements' clock is at most 1.5 s behind the latest window (a late
-// link and the receiver's own latency) and never more than 0.25 s ahead of it.
-bool on_our_clock(double behind_s) { return behind_s >= -0.25 && behind_s <= 1.5; }
+// A report on the measurements' clock is within 5 s of the latest window: behind it by a
+// late link's delay, ahead of it by what a slow receiver has not yet processed.
+bool on_our_clock(double behind_s) { return std::abs(behind_s) <= 5.0; }
 } // namespace
 
 void nav_history::insert(double t, double heading)

@@ -20,10 +20,9 @@ namespace rfseek {
 
 /*!
  * A report's time on the measurements' clock:
- *  - its "time", when that is the measurements' clock: at most 1.5 s behind the latest
- *    measurement's time when it arrives and at most 0.25 s ahead (a simulated or
- *    rehearsed world, a radio and a link on one host clock); 5 reports in a row off it
- *    make the clock foreign;
+ *  - its "time", when that is the measurements' clock: within 5 s of the latest
+ *    measurement's time when it arrives (a simulated or rehearsed world, a radio and a
+ *    link on one host clock); 5 reports in a row further off make the clock foreign;
  *  - its "time" moved by the clocks' offset otherwise, learned as the least difference
  *    (latest measurement's time at arrival - report's time) over the last 64 reports:
  *    the fastest report sets the offset, and a late or out-of-order one is put back

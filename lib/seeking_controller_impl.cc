@@ -106,9 +106,9 @@ void seeking_controller_impl::handle_nav(const pmt::pmt_t& msg)
     d_nav.report(as_double(h), timed, timed ? as_double(t) : 0.0);
     if (d_nav.foreign_clock() && !was_foreign)
         d_logger->info(
-            "nav reports' 'time' is not the measurements' clock (a report "
-            "over 1.5 s behind the latest window or ahead of it): their offset "
-            "is learned from the fastest reports");
+            "nav reports' 'time' is not the measurements' clock (5 reports in a "
+            "row over 5 s from the latest window): their offset is learned from "
+            "the fastest reports");
     drain();
 }
 

@@ -42,9 +42,9 @@ TEST(nav_history, the_report_nearest_in_time_interpolated_and_in_order)
     EXPECT_NEAR(p.offset_s, -0.7, 1e-12);
     EXPECT_FALSE(h.at(11.6).found);
     EXPECT_FALSE(h.foreign_clock());
-    // Reports 2 s behind the latest window: one is a late packet, five in a row are on
+    // Reports 6 s behind the latest window: one is a late packet, five in a row are on
     // another clock.
-    h.measured(12.6);
+    h.measured(16.6);
     h.report(0.0, true, 10.6);
     EXPECT_FALSE(h.foreign_clock());
     for (int k = 1; k < 5; ++k)

@@ -107,3 +107,34 @@ def progress_line(meas, telemetry, windows, wall_s):
                 meas.get("time", 0.0), wall_s, windows, meas["freq_hz"], meas["snr_db"],
                 telemetry["stage"], compass_deg(telemetry["heading"]),
                 "" if meas["valid"] else "  (invalid)"))
+
+
+def make_estimator(args, rfseek, rate, alignment, src=None):
+    """doppler_estimator: period --slot x rate, the radio's band, its detection test and
+    its full scale (src.full_scale(): clipped windows are never valid)."""
+    period = args.period if args.period is not None else int(round(args.slot * rate))
+    pfa = args.pfa if args.pfa is not None else (
+        1e-3 if args.source in ("uhd", "osmosdr", "soapy", "zmq") else 0.0)
+    band = getattr(args, "band", (0.0, 0.0))
+    est = rfseek.doppler_estimator(rate, args.window_len, args.fft_len,
+                                   interpolator=args.interpolator, alignment=alignment,
+                                   period=period, min_freq=band[0], max_freq=band[1],
+                                   threshold_db=args.threshold_db, pfa=pfa)
+    est.set_full_scale(src.full_scale() if hasattr(src, "full_scale") else 0.0)
+    return est
+
+
+def gain_control(args, src):
+    """--agc on (the default) with a radio or a rehearsal: a gain_loop that steps the
+    radio's gain (from --gain, else the table's; a rehearsal's from 0 dB relative); None
+    for files, ZeroMQ and the plain simulation, or --agc off."""
+    if getattr(args, "agc", "off") != "on":
+        return None
+    from .gain_loop import gain_loop
+    if hasattr(src, "radio") and hasattr(src.radio, "set_gain") and hasattr(src, "world"):
+        return gain_loop(src.radio.set_gain, 0.0, -60.0)  # a rehearsal's sim_radio
+    if hasattr(src, "set_gain") and hasattr(src, "radio"):  # radio_source
+        lo, hi = src.radio.gain_db
+        start = src._clamp_gain(args.gain)
+        return gain_loop(src.set_gain, start, lo)
+    return None

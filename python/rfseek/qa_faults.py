@@ -237,6 +237,22 @@ class qa_faults(gr_unittest.TestCase):
         with self.assertRaisesRegex(ValueError, "set_gain"):
             gain_loop(None, 30.0, 0.0)
 
+    def test_rfseek_live_puts_the_gain_loop_on_radios_and_rehearsals(self):
+        import argparse
+        from gnuradio.rfseek import live_options
+        from gnuradio.rfseek.gain_loop import gain_loop
+        from gnuradio.rfseek.rehearsal import rehearsal_source
+        sc = rfseek.scenario(carrier_hz=915e6)
+        src = rehearsal_source(sc, "rtlsdr", realtime=False)
+        on = argparse.Namespace(agc="on", gain=None)
+        loop = live_options.gain_control(on, src)
+        self.assertIsInstance(loop, gain_loop)
+        loop.set_gain(-10.0)  # the simulated radio's own setter
+        self.assertEqual(src.radio.gain_db, -10.0)
+        self.assertIsNone(live_options.gain_control(argparse.Namespace(agc="off"), src))
+        plain = rfseek.channel_source(sc, lockstep=False)
+        self.assertIsNone(live_options.gain_control(on, plain))
+
     def test_the_controller_pairs_each_window_with_the_report_nearest_in_time(self):
         # Heading reports every 0.1 s of a turn at 0.5 rad/s, posted out of order, then
         # windows: at 0.53 s the heading is the reports' around it; at 2.5 s no report is

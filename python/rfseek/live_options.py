@@ -21,7 +21,9 @@ def refuse_unused(args, serving=False):
             "carrier and rate are scenario fields (--set carrier_hz=... --set "
             "samp_rate_hz=...)")
     elif args.source == "sim":
-        given, why = (radio if args.radio else dict(radio, **plan)), (
+        # (A rehearsal's --gain is its simulated radio's, relative to the noise level.)
+        given, why = ({k: v for k, v in radio.items() if k != "--gain"} if args.radio
+                      else dict(radio, **plan)), (
             "the simulated world's carrier and sample rate are scenario fields (--set "
             "carrier_hz=... --set samp_rate_hz=...)%s" % (
                 "" if args.radio else "; --device-rate and --lo-offset need --radio FAMILY"))
@@ -132,7 +134,8 @@ def gain_control(args, src):
         return None
     from .gain_loop import gain_loop
     if hasattr(src, "radio") and hasattr(src.radio, "set_gain") and hasattr(src, "world"):
-        return gain_loop(src.radio.set_gain, 0.0, -60.0)  # a rehearsal's sim_radio
+        start = src.radio.gain_db  # a rehearsal's sim_radio
+        return gain_loop(src.radio.set_gain, start, start - 60.0)
     if hasattr(src, "set_gain") and hasattr(src, "radio"):  # radio_source
         lo, hi = src.radio.gain_db
         start = src._clamp_gain(args.gain)

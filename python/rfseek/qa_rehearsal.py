@@ -58,6 +58,27 @@ class qa_rehearsal(gr_unittest.TestCase):
         self.assertLess(int(m.group(2)), 0.1 * int(m.group(1)))
         self.assertRegex(err, r"rfseek-live: arrived, \d+ m flown")
 
+    def test_the_gain_loop_keeps_a_loud_radio_from_clipping(self):
+        # The 8-bit radio 15 dB louder than its noise level asks for (set for a far
+        # beacon): near the emitter the beacon clips. Without the gain loop most windows
+        # are clipped, so invalid, and the flight wanders; with it (the default) few are.
+        flight = ("--source", "sim", "--radio", "rtlsdr", "--set", "carrier_hz=915e6",
+                  "--seed", "3", "--set", "initial_distance_m=400", "--speedup", "5",
+                  "--strategy", "adaptive", "--gain", "15", "--duration", "120")
+        runs = {}
+        for agc in ("off", "on"):
+            p = live(*flight, "--agc", agc)
+            out, err = p.communicate(timeout=300)
+            self.assertEqual(p.returncode, 0, err)
+            m = re.search(r"rfseek-live: (\d+) measurements, \d+ Stage-2 updates, "
+                          r"(\d+) invalid", err)
+            self.assertIsNotNone(m, err)
+            runs[agc] = int(m.group(2)) / int(m.group(1))
+            if agc == "on":
+                self.assertRegex(err, r"rfseek-live: arrived, \d+ m flown")
+        self.assertGreater(runs["off"], 0.5)
+        self.assertLess(runs["on"], 0.05)
+
     def test_two_processes_over_zeromq_arrive(self):
         addr = "tcp://127.0.0.1:%d" % free_port()
         beacon = live("--source", "sim", "--radio", "rtlsdr", "--zmq-serve", addr,

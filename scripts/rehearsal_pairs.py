@@ -17,13 +17,17 @@ For each seed, rfseek-live --source sim flies the same scenario twice, paced to
            IQ imbalance, quantisation) through the receive chain of a live radio, its
            timing acquired (alignment acquire), the heading from the vehicle's reports.
 With --fault "ARGS" both flights go --via, the second with rfseek-live's ARGS added (a
-fault: --fault "--fault nav:0.3,0,2"), so the pair is the fault's cost.
+fault: --fault "--fault nav:0.3,0,2"), so the pair is the fault's cost; --base "ARGS"
+adds options to the first only, --both "ARGS" to both (a clipping study: --both "--gain
+10" --base "--fault adc:unclipped" --fault "", the same radio with a converter that does
+not saturate as the reference).
 It prints the distance flown (as a ratio to the start distance) of each and the paired
 difference, with its mean and standard error.
 
   /usr/bin/python3 scripts/rehearsal_pairs.py [--seeds 20] [--first 1]
       [--distance 1000] [--speedup 10] [--strategy paper] [--via mavlink|radio:FAMILY]
       [--autopilot ardupilot_plane] [--set KEY=VALUE ...] [--fault "ARGS"]
+      [--base "ARGS"] [--both "ARGS"]
 
 Run from a build tree (PYTHONPATH and LD_LIBRARY_PATH as in rfseek-env.sh) or with the
 module installed.
@@ -56,7 +60,10 @@ def fly(live, seed, args, via, extra=()):
             seed, via or "direct", errors[-1] if errors else
             "rfseek-live exited %d:\n%s" % (r.returncode, r.stderr[-1500:])))
     late = re.search(r"simulator: (\d+) commands applied late", r.stderr)
-    return m.group(1) == "arrived", float(m.group(2)), int(late.group(1)) if late else 0
+    clip = re.search(r"gain loop: (\d+) gain steps .*, (\d+) windows clipped, (\d+) of them "
+                     r"valid", r.stderr)
+    return (m.group(1) == "arrived", float(m.group(2)), int(late.group(1)) if late else 0,
+            tuple(int(x) for x in clip.groups()) if clip else (0, 0, 0))
 
 
 class RunFailed(Exception):
@@ -80,6 +87,10 @@ def main(argv):
                         "radio that does not tune 2 GHz)")
     p.add_argument("--fault", default=None, metavar="ARGS",
                    help="both flights --via, the second with these rfseek-live options")
+    p.add_argument("--base", default="", metavar="ARGS",
+                   help="with --fault: rfseek-live options of the first flight only")
+    p.add_argument("--both", default="", metavar="ARGS",
+                   help="rfseek-live options of both flights")
     p.add_argument("--timeout", type=float, default=600.0,
                    help="wall seconds per run before it is stopped")
     args = p.parse_args(argv)
@@ -105,20 +116,25 @@ def main(argv):
     if args.via != "mavlink" and not args.via.startswith("radio:"):
         p.error("--via: mavlink or radio:FAMILY")
     name = args.via.split(":")[0]
-    base, extra = (args.via, args.fault.split()) if args.fault else (None, ())
-    if args.fault:
+    base, extra = (args.via, args.fault.split()) if args.fault is not None else (None, ())
+    if args.base and args.fault is None:
+        p.error("--base: only with --fault (the second flight's options)")
+    if args.fault is not None:
         name = "fault"
-    first = "clean" if args.fault else "direct"
+    first = "clean" if args.fault is not None else "direct"
     print("seed  %6s ratio  %7s ratio  difference" % (first, name))
-    late = 0
+    late, clips = 0, [[0, 0, 0], [0, 0, 0]]
+    both = args.both.split()
     for seed in range(args.first, args.first + args.seeds):
         try:
-            a_ok, a, late_a = fly(live, seed, args, base)
-            b_ok, b, late_b = fly(live, seed, args, args.via, extra)
+            a_ok, a, late_a, clip_a = fly(live, seed, args, base, both + args.base.split())
+            b_ok, b, late_b, clip_b = fly(live, seed, args, args.via, both + list(extra))
         except RunFailed as e:
             print("rehearsal_pairs.py: error: %s" % e, file=sys.stderr)
             return 1
         late += late_a + late_b
+        for total, c in zip(clips, (clip_a, clip_b)):
+            total[:] = [x + y for x, y in zip(total, c)]
         # rfseek-live reports the flight to the arrival radius; the ratio is to the
         # straight line from the start to that radius, as the study's.
         line = args.distance - probe.success_radius_m
@@ -137,6 +153,10 @@ def main(argv):
     print("paired difference (%s - %s): %+.4f +- %.4f (standard error)"
           % (name, first, mean, se))
     print("commands the simulator flew late (free-running, over all runs): %d" % late)
+    for label, (steps, clipped, valid) in zip((first, name), clips):
+        if steps or clipped:
+            print("%s: %d gain steps, %d windows clipped, %d of them valid (all runs)"
+                  % (label, steps, clipped, valid))
     return 0
 
 

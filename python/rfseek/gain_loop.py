@@ -23,9 +23,12 @@ class gain_loop(gr.basic_block):
     `meas` (forwarded; power_db and noise_power_db minus the gain change since the start,
     gain_db added; windows in the settle_s after a change are invalid, since the gain
     they were measured at is not known). set_gain: a callable taking the radio's gain in
-    dB (radio_source.set_gain, sim_radio.set_gain). A window that clips or peaks above
-    high_dbfs steps the gain down by step_down_db (not below min_db); hold windows in a
-    row below low_dbfs step it up by step_up_db (not above the start)."""
+    dB (radio_source.set_gain, sim_radio.set_gain), or None: every change is also
+    published on the message port `command` as {"gain": dB}, the command of UHD's
+    sources and of radio_source (GRC: connect it to the radio's command port). A window
+    that clips or peaks above high_dbfs steps the gain down by step_down_db (not below
+    min_db); hold windows in a row below low_dbfs step it up by step_up_db (not above
+    the start)."""
 
     def __init__(self, set_gain, gain_db, min_db, high_dbfs=-6.0, low_dbfs=-30.0,
                  step_down_db=10.0, step_up_db=5.0, settle_s=0.2, hold=20):
@@ -36,9 +39,9 @@ class gain_loop(gr.basic_block):
         for name, v in checks:
             if not (isinstance(v, (int, float)) and math.isfinite(v)):
                 raise ValueError("gain_loop: %s = %r: must be a finite number" % (name, v))
-        if not callable(set_gain):
+        if set_gain is not None and not callable(set_gain):
             raise ValueError("gain_loop: set_gain = %r: must be callable (the radio's "
-                             "set_gain)" % (set_gain,))
+                             "set_gain) or None (commands on the port only)" % (set_gain,))
         if not (min_db <= gain_db and low_dbfs < high_dbfs <= 0.0 and step_down_db > 0 and
                 step_up_db > 0 and settle_s >= 0 and isinstance(hold, int) and hold >= 1):
             raise ValueError("gain_loop: need min_db <= gain_db, low_dbfs < high_dbfs <= 0, "
@@ -51,8 +54,10 @@ class gain_loop(gr.basic_block):
         self.changes = []      # (window time of the change, gain before, gain after)
         self._quiet = 0
         self.dropped = 0
+        self.clipped = self.clipped_valid = 0  # windows clipped; of them passed as valid
         self.message_port_register_in(pmt.intern("meas"))
         self.message_port_register_out(pmt.intern("meas"))
+        self.message_port_register_out(pmt.intern("command"))
         self.set_msg_handler(pmt.intern("meas"), self.on_meas)
 
     def gain_at(self, t):
@@ -82,8 +87,17 @@ class gain_loop(gr.basic_block):
         d["gain_db"] = gain
         if settling:
             d["valid"] = False
+        if d.get("clipped"):
+            self.clipped += 1
+            self.clipped_valid += bool(d.get("valid"))
         self._step(t, d)
         self.message_port_pub(pmt.intern("meas"), pmt.to_pmt(d))
+
+    def summary(self):
+        """One line for a run's end: the steps, the gain's range, the clipped windows."""
+        gains = [self.start_db] + [after for _, _, after in self.changes]
+        return "%d gain steps (%.0f to %.0f dB), %d windows clipped, %d of them valid" % (
+            len(self.changes), min(gains), max(gains), self.clipped, self.clipped_valid)
 
     def _step(self, t, d):
         peak = d.get("peak_dbfs")
@@ -105,4 +119,6 @@ class gain_loop(gr.basic_block):
         if new != self.gain_db:
             self.changes.append((t, self.gain_db, new))
             self.gain_db = new
-            self.set_gain(new)
+            if self.set_gain is not None:
+                self.set_gain(new)
+            self.message_port_pub(pmt.intern("command"), pmt.to_pmt({"gain": new}))

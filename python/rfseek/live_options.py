@@ -48,8 +48,11 @@ def refuse_unused(args, serving=False):
 def fault(text):
     """--fault nav:DELAY[,JITTER[,DROPOUT[,EVERY]]] (seconds; state_to_nav's faults) or
     overflow:EVERY[,LOST] (LOST samples, 3000 by default, lost every EVERY s; the
-    rehearsal's overflow_injector) -> (kind, keyword arguments)."""
+    rehearsal's overflow_injector) or adc:unclipped (the simulated converter does not
+    saturate: the reference of a clipping study) -> (kind, keyword arguments)."""
     kind, _, values = text.partition(":")
+    if text == "adc:unclipped":
+        return kind, {"clip": False}
     try:
         v = [float(x) for x in values.split(",")]
     except ValueError:
@@ -62,8 +65,8 @@ def fault(text):
         return kind, dict(zip(("every_s", "lost"), v))
     raise argparse.ArgumentTypeError(
         "%r: must be nav:DELAY[,JITTER[,DROPOUT[,EVERY]]] (seconds >= 0, a dropout shorter "
-        "than its period, 20 s by default) or overflow:EVERY[,LOST] (EVERY > 0 s, LOST >= 1 "
-        "samples)" % text)
+        "than its period, 20 s by default), overflow:EVERY[,LOST] (EVERY > 0 s, LOST >= 1 "
+        "samples) or adc:unclipped" % text)
 
 
 def split_sets(args, rfseek):

@@ -10,6 +10,8 @@ timed by the tag in force at their first sample, slots that follow time across t
 no window valid across it); a continuous carrier 20 dB above the beacon and wideband
 noise bursts (the beacon found and measured, the interferer never reported)."""
 
+import time
+
 import numpy as np
 import pmt
 from gnuradio import blocks, gr, gr_unittest
@@ -205,11 +207,12 @@ class qa_faults(gr_unittest.TestCase):
         from gnuradio.rfseek.gain_loop import gain_loop
         radio = {"gain": 30.0, "pending": []}
         now = [0.0]
-        out = []
+        out, commands = [], []
 
         class probe(gain_loop):
             def message_port_pub(self, port, msg):
-                out.append(pmt.to_python(msg))
+                (out if pmt.symbol_to_string(port) == "meas" else commands).append(
+                    pmt.to_python(msg))
 
         loop = probe(lambda g: radio["pending"].append((now[0] + 0.1, g)), 30.0, 0.0)
         for k in range(2000):
@@ -234,8 +237,39 @@ class qa_faults(gr_unittest.TestCase):
         self.assertLessEqual(len(clipped), 3)
         self.assertGreater(sum(m["valid"] for m in out), 0.95 * len(out))
         self.assertEqual(loop.gain_db, 30.0)  # back at the start once it has fallen
+        # Every change also went out as a radio's command, in order.
+        self.assertEqual(commands, [{"gain": after} for _, _, after in loop.changes])
         with self.assertRaisesRegex(ValueError, "set_gain"):
-            gain_loop(None, 30.0, 0.0)
+            gain_loop("radio", 30.0, 0.0)
+
+    def test_a_radio_takes_the_gain_loops_commands(self):
+        # gain_loop (no setter: the GRC block) -> a radio_source's command port: each
+        # {"gain": dB} reaches the radio's setter; other messages are counted and dropped
+        # while it keeps going.
+        from gnuradio.rfseek.gain_loop import gain_loop
+        from gnuradio.rfseek.radios import _commands
+        got = []
+        radio = _commands({"gain": got.append, "freq": got.append})
+        loop = gain_loop(None, 30.0, 0.0)
+        tb = gr.top_block()
+        tb.msg_connect(loop, "command", radio, "command")
+        tb.start()
+        try:
+            for k, peak in enumerate((-20.0, 0.0, -20.0, 1.0)):
+                loop.to_basic_block()._post(pmt.intern("meas"), pmt.to_pmt(
+                    {"time": 1.0 * k, "valid": True, "peak_dbfs": peak,
+                     "clipped": peak >= 0.0}))
+            for bad in (pmt.intern("gain"), pmt.to_pmt({"gain": "high"}),
+                        pmt.to_pmt({"volume": 3.0})):
+                radio.to_basic_block()._post(pmt.intern("command"), bad)
+            deadline = time.time() + 5.0
+            while (len(got) < 2 or radio.dropped < 3) and time.time() < deadline:
+                time.sleep(0.01)
+        finally:
+            tb.stop()
+            tb.wait()
+        self.assertEqual(got, [20.0, 10.0])  # two clipped windows, 10 dB each
+        self.assertEqual(radio.dropped, 3)
 
     def test_rfseek_live_puts_the_gain_loop_on_radios_and_rehearsals(self):
         import argparse
@@ -257,7 +291,6 @@ class qa_faults(gr_unittest.TestCase):
         # Heading reports every 0.1 s of a turn at 0.5 rad/s, posted out of order, then
         # windows: at 0.53 s the heading is the reports' around it; at 2.5 s no report is
         # within 1 s: no heading, and the telemetry says so.
-        import time
         ctl = rfseek.seeking_controller(rfseek.seeker_config())
         dbg = blocks.message_debug()
         tb = gr.top_block()

@@ -189,18 +189,25 @@ class qa_radios(gr_unittest.TestCase):
         # A tone 30 dB over the noise through an 8-bit radio (the noise 8 steps above
         # zero, so full scale 24 dB above it) at gain 0 and at -20 dB: the first clips at
         # the converter, and the estimator told the full scale finds every window
-        # clipped; 20 dB less gain leaves it clean and valid.
-        for gain_db, clipped in ((0.0, True), (-20.0, False)):
-            s = rfseek.rx_plan("rtlsdr", 915e6)
+        # clipped; 20 dB less gain leaves it clean and valid. A 12-bit radio (full scale
+        # 48 dB above the noise) clips the same tone at +20 dB, not at 0 dB; with
+        # clip=False neither saturates: the samples exceed the converter's full scale
+        # (2x and 1.26x), within the radio's lifted one.
+        for family, gain_db, clip, clipped in (
+                ("rtlsdr", 0.0, True, True), ("rtlsdr", -20.0, True, False),
+                ("usrp_b2xx", 20.0, True, True), ("usrp_b2xx", 0.0, True, False),
+                ("rtlsdr", 0.0, False, False), ("usrp_b2xx", 20.0, False, False)):
+            s = rfseek.rx_plan(family, 915e6)
             src = gr.hier_block2("src", gr.io_signature(0, 0, 0),
                                  gr.io_signature(1, 1, gr.sizeof_gr_complex))
             tone = analog.sig_source_c(s.device_rate, analog.GR_COS_WAVE,
                                        1234.0, 10 ** (30 / 20), 0)
             noise = analog.noise_source_c(analog.GR_GAUSSIAN, 1.0, 6)
             add = blocks.add_cc()
-            radio = rfseek.sim_radio(s, in_rate=s.device_rate, noise_rms=1.0, dc=0.0)
+            radio = rfseek.sim_radio(s, in_rate=s.device_rate, noise_rms=1.0, dc=0.0,
+                                     clip=clip)
             radio.set_gain(gain_db)
-            chain = rfseek.radio_rx_chain(s, None, False)
+            chain = rfseek.radio_rx_chain(s, None, rfseek.radio_for(family).ddc)
             src.connect(tone, (add, 0))
             src.connect(noise, (add, 1))
             src.connect(add, radio, chain, src)
@@ -208,8 +215,17 @@ class qa_radios(gr_unittest.TestCase):
                                            pfa=1e-3)
             est.set_full_scale(radio.full_scale)
             meas = run(src, est, 50 * N)[2:]  # (after the filter's start)
-            self.assertEqual(all(m["clipped"] for m in meas), clipped, gain_db)
-            self.assertEqual(any(m["valid"] for m in meas), not clipped, gain_db)
+            case = (family, gain_db, clip)
+            self.assertEqual(all(m["clipped"] for m in meas), clipped, case)
+            self.assertEqual(any(m["clipped"] for m in meas), clipped, case)
+            self.assertEqual(any(m["valid"] for m in meas), not clipped, case)
+            # The largest sample against the converter's full scale (8 steps of noise).
+            fs = (2 ** (rfseek.radio_for(family).adc_bits - 1) - 1) / 8.0
+            peak = max(10 ** (m["peak_dbfs"] / 20) for m in meas) * radio.full_scale / fs
+            if clipped:  # held at full scale (I and Q at most at their largest codes)
+                self.assertLess(peak, 1.45, case)
+            elif not clip:
+                self.assertGreater(peak, 1.5 if family == "rtlsdr" else 1.1, case)
         with self.assertRaisesRegex(ValueError, "gain_db"):
             radio.set_gain(float("nan"))
 

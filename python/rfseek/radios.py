@@ -26,6 +26,7 @@ quantisation).
 import math
 
 import numpy
+import pmt
 from dataclasses import dataclass
 
 from gnuradio import blocks, filter, gr
@@ -318,8 +319,11 @@ class radio_source(gr.hier_block2):
     """A radio of the table receiving the beacon at `freq`, its samples at the
     estimator's rate (`out_rate`, exactly the granted device rate / the decimation, with
     an rx_rate tag saying so), the beacon centred at 0 Hz and the DC spike filtered out.
-    ``band()`` is the search band for doppler_estimator. LookupError when the device
-    (or its driver) is missing, ValueError for settings the device cannot do."""
+    ``band()`` is the search band for doppler_estimator. Message port `command` (in):
+    dicts with "gain" (dB) and/or "freq" (Hz), as UHD's sources take them (gain_loop's
+    output); anything else is logged, counted (``dropped_commands()``) and dropped.
+    LookupError when the device (or its driver) is missing, ValueError for settings the
+    device cannot do."""
 
     def __init__(self, family="usrp_b2xx", freq=2.4e9, gain=None, out_rate=100e3,
                  device_args=None, lo_offset=None, device_rate=None, antenna=""):
@@ -336,6 +340,12 @@ class radio_source(gr.hier_block2):
                             granted / self.settings.decimation))
         self.chain = radio_rx_chain(self.settings, granted, self.radio.ddc)
         self.connect(self.device, self.chain, self)
+        self.commands = _commands({"gain": self.set_gain, "freq": self.set_freq})
+        self.message_port_register_hier_in("command")
+        self.msg_connect(self, "command", self.commands, "command")
+
+    def dropped_commands(self):
+        return self.commands.dropped
 
     def _clamp_gain(self, gain):
         lo, hi = self.radio.gain_db
@@ -392,11 +402,15 @@ class sim_radio(gr.hier_block2):
     complex sample) is `noise_lsb` steps of the ADC (8: the noise floor 18 dB above the
     quantisation's, as docs/live.md advises) at gain_db 0. gain_db (set_gain at run time)
     scales the beacon and its noise before the converter, as a radio's receive gain does:
-    a strong beacon clips at full scale (the converter saturates). Feed its output to
-    radio_rx_chain(settings)."""
+    a strong beacon clips at full scale (each of I and Q saturates at the converter's
+    largest code). clip=False keeps the steps but lifts that limit to a 16-bit
+    container's, 24 dB or more higher (a reference for clipping studies: the same radio
+    with a converter that does not saturate). Feed its
+    output to radio_rx_chain(settings)."""
 
     def __init__(self, settings, in_rate=100e3, noise_rms=1.0, noise_lsb=8.0,
-                 dc=0.05 + 0.03j, iq_gain_db=0.5, iq_phase_deg=2.0, gain_db=0.0):
+                 dc=0.05 + 0.03j, iq_gain_db=0.5, iq_phase_deg=2.0, gain_db=0.0,
+                 clip=True):
         gr.hier_block2.__init__(self, "sim_radio",
                                 gr.io_signature(1, 1, gr.sizeof_gr_complex),
                                 gr.io_signature(1, 1, gr.sizeof_gr_complex))
@@ -430,7 +444,11 @@ class sim_radio(gr.hier_block2):
             # is then at +lo_offset, the image at +2 lo_offset.
             blocks_in.append(blocks.rotator_cc(w))
         scale = (2 ** (r.adc_bits - 1) - 1) / full_scale
-        if r.adc_bits <= 8:
+        if clip and r.adc_bits < 16 and r.adc_bits > 8:
+            # Saturate I and Q at the converter's full scale (a 16-bit container would
+            # hold 2**(16 - bits) times more).
+            blocks_in.append(_rail_iq(full_scale))
+        if clip and r.adc_bits <= 8:
             blocks_in += [blocks.complex_to_interleaved_char(False, scale),
                           blocks.interleaved_char_to_complex(False, scale)]
         else:
@@ -439,7 +457,8 @@ class sim_radio(gr.hier_block2):
         # rx_rate as the device would tag its stream: the device rate.
         blocks_in.append(rate_retag(rate, interp))
         self.stages = blocks_in
-        self.full_scale = full_scale  # the ADC's, in the input's units
+        # The ADC's, in the input's units (without clip: the 16-bit container's).
+        self.full_scale = full_scale if clip else 32767.0 / scale
         self.connect(self, *blocks_in, self)
 
     def set_gain(self, gain_db):
@@ -449,6 +468,46 @@ class sim_radio(gr.hier_block2):
             raise ValueError("sim_radio: gain_db = %r: must be in [-100, 100] dB" % (gain_db,))
         self.gain_db = float(gain_db)
         self.gain.set_k(10.0 ** (self.gain_db / 20.0))
+
+
+class _commands(gr.basic_block):
+    """Message port `command`: a dict's keys of `setters` call them with its values;
+    a message that is not such a dict, or a value a setter refuses, is logged, counted
+    and dropped."""
+
+    def __init__(self, setters):
+        gr.basic_block.__init__(self, name="rfseek_radio_commands", in_sig=None,
+                                out_sig=None)
+        self.setters, self.dropped = setters, 0
+        self.message_port_register_in(pmt.intern("command"))
+        self.set_msg_handler(pmt.intern("command"), self.on_command)
+
+    def on_command(self, msg):
+        try:
+            d = pmt.to_python(msg)
+            calls = [(self.setters[k], float(v)) for k, v in d.items() if k in self.setters]
+            if not calls:
+                raise ValueError("no key of %s" % sorted(self.setters))
+            for setter, value in calls:
+                setter(value)
+        except (AttributeError, TypeError, ValueError) as e:
+            self.dropped += 1
+            gr.log.warn("radio_source: command %s dropped: %s" % (msg, e))
+
+
+class _rail_iq(gr.hier_block2):
+    """I and Q each held within [-limit, limit], as a pair of converters saturates."""
+
+    def __init__(self, limit):
+        gr.hier_block2.__init__(self, "rail_iq", gr.io_signature(1, 1, gr.sizeof_gr_complex),
+                                gr.io_signature(1, 1, gr.sizeof_gr_complex))
+        from gnuradio import analog
+        split, join = blocks.complex_to_float(), blocks.float_to_complex()
+        self.connect(self, split)
+        for k in (0, 1):
+            rail = analog.rail_ff(-limit, limit)
+            self.connect((split, k), rail, (join, k))
+        self.connect(join, self)
 
 
 def _hz(f):

@@ -113,7 +113,8 @@ class rehearsal_source(gr.hier_block2):
     output at the world's rate (with rx_rate), message ports cmd (in; to the world),
     state (out; the world's truth, for logs) and nav (out; heading reports for the
     controller). faults: (kind, arguments) pairs, as rfseek-live --fault gives them:
-    ("nav", state_to_nav's link faults), ("overflow", overflow_injector's)."""
+    ("nav", state_to_nav's link faults), ("overflow", overflow_injector's), ("adc",
+    sim_radio's clip=False: a converter that does not saturate, a study's reference)."""
 
     def __init__(self, sc, family, speedup=1.0, realtime=True, lo_offset=None,
                  device_rate=None, faults=None, **impairments):
@@ -121,11 +122,11 @@ class rehearsal_source(gr.hier_block2):
                                 gr.io_signature(1, 1, gr.sizeof_gr_complex))
         self.settings = rehearsal_plan(sc, family, lo_offset, device_rate)
         self.world = _world(sc, speedup, realtime)
+        faults = dict(faults or [])
         self.radio = sim_radio(self.settings, sc.samp_rate_hz, _noise_rms(sc),
-                               **impairments)
+                               **dict(impairments, **faults.get("adc", {})))
         from .radios import radio_for
         self.chain = radio_rx_chain(self.settings, None, radio_for(family).ddc)
-        faults = dict(faults or [])
         self.nav = state_to_nav(**faults.get("nav", {}))
         stages = [self.world, self.radio, self.chain]
         if "overflow" in faults:  # (at the estimator's rate: the tags' places are exact)
@@ -186,10 +187,10 @@ class beacon_side(gr.top_block):
         samples, nav, cmd = zmq_ports(address)
         self.settings = rehearsal_plan(sc, family)
         self.world = _world(sc, speedup, realtime)
-        self.radio = sim_radio(self.settings, sc.samp_rate_hz, _noise_rms(sc),
-                               **impairments)
-        self.push = zeromq.push_sink(gr.sizeof_gr_complex, 1, samples, 100, True, -1)
         faults = dict(faults or [])
+        self.radio = sim_radio(self.settings, sc.samp_rate_hz, _noise_rms(sc),
+                               **dict(impairments, **faults.get("adc", {})))
+        self.push = zeromq.push_sink(gr.sizeof_gr_complex, 1, samples, 100, True, -1)
         if "overflow" in faults:
             raise ValueError("--fault overflow: in a one-process rehearsal (--source sim "
                              "--radio FAMILY), not served over ZeroMQ")

@@ -38,6 +38,9 @@ def refuse_unused(args, serving=False):
                                                           args.radio)):
         raise ValueError("--fault: only in a rehearsal (--source sim --radio FAMILY, "
                          "or --zmq-serve), where the radio and the vehicle are simulated")
+    kinds = [kind for kind, _ in getattr(args, "fault", None) or []]
+    for kind in sorted(set(k for k in kinds if kinds.count(k) > 1)):
+        raise ValueError("--fault %s: given twice; give each kind once" % kind)
     unused = [flag for flag, value in given.items() if value is not None]
     if unused:
         raise ValueError("%s: not used %s: %s" % (

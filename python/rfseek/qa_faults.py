@@ -175,11 +175,14 @@ class qa_faults(gr_unittest.TestCase):
     def test_the_rehearsals_overflow_injector(self):
         # A ramp through the injector: 3000 samples lost every 20 s (at 1 kS/s), each
         # gap's next sample tagged with its true time; the estimator counts each one.
+        # rx_rate tags every 1000 samples: those in a gap go out with the next time.
         from gnuradio.rfseek.rehearsal import overflow_injector
         from gnuradio.rfseek.live_options import fault
         x = np.arange(100_000).astype(np.complex64)
         tb = gr.top_block()
-        src = blocks.vector_source_c(x.tolist(), False)
+        rate_tags = [gr.python_to_tag((p, pmt.intern("rx_rate"), pmt.from_double(1000.0),
+                                       pmt.PMT_F)) for p in range(500, 100_000, 1000)]
+        src = blocks.vector_source_c(x.tolist(), False, 1, rate_tags)
         inj = overflow_injector(1000.0, **fault("overflow:20,3000")[1], seed=3)
         snk = blocks.vector_sink_c()
         est = rfseek.doppler_estimator(1000.0, 64, 64, alignment="periodic", period=100)
@@ -196,6 +199,15 @@ class qa_faults(gr_unittest.TestCase):
         self.assertEqual(sorted(times), [0] + list(jumps))
         for k, (secs, frac) in times.items():
             self.assertAlmostEqual(secs + frac, y[k] / 1000.0, places=9)
+        where = {int(v): k for k, v in enumerate(y)}  # input sample -> output index
+        expected = set()
+        for p in range(500, 100_000, 1000):
+            # kept: at its own sample; dropped: at the first sample after its gap
+            expected.add(where.get(p, next((k for k in jumps if y[k] > p), None)))
+        rates = [t.offset for t in snk.tags() if pmt.symbol_to_string(t.key) == "rx_rate"]
+        self.assertEqual(len(rates), len(set(rates)))
+        self.assertEqual(set(rates), expected)
+        self.assertEqual(len(rates), 100 - 4 * 3 + 4)  # 3 in each gap, one carried
         self.assertEqual(est.discontinuity_count(), 4)
         with self.assertRaises(Exception):
             fault("overflow:0")
@@ -242,6 +254,41 @@ class qa_faults(gr_unittest.TestCase):
         with self.assertRaisesRegex(ValueError, "set_gain"):
             gain_loop("radio", 30.0, 0.0)
 
+    def test_the_gain_loop_follows_the_users_gain_and_refuses_bad_settings(self):
+        # A slider moves the radio to 20 dB (set_gain_db, the GRC callback): windows
+        # from the latest one on are referred to it, and the loop steps up to 20 only.
+        from gnuradio.rfseek.gain_loop import gain_loop
+        out = []
+
+        class probe(gain_loop):
+            def message_port_pub(self, port, msg):
+                if pmt.symbol_to_string(port) == "meas":
+                    out.append(pmt.to_python(msg))
+
+        loop = probe(None, np.float32(30.0), 0, hold=np.int64(2))
+        meas = lambda t, peak: loop.on_meas(pmt.to_pmt(
+            {"time": t, "valid": True, "peak_dbfs": peak, "power_db": -50.0}))
+        meas(1.0, -20.0)
+        loop.set_gain_db(20.0)
+        meas(1.5, -40.0)
+        for t in (2.0, 2.05, 2.1, 2.15):
+            meas(t, -40.0)
+        self.assertEqual(loop.gain_db, 20.0)  # quiet, but not above the user's gain
+        self.assertEqual([m["gain_db"] for m in out], [30.0] + [20.0] * 5)
+        self.assertEqual(out[1]["power_db"], -40.0)  # referred to the first 30 dB
+        loop.on_meas(pmt.to_pmt({"time": float("nan"), "valid": True}))
+        self.assertEqual((loop.dropped, len(out)), (1, 6))
+        for bad, name in (({"gain_db": True}, "gain_db"), ({"min_db": 40.0}, "min_db"),
+                          ({"high_dbfs": -40.0}, "high_dbfs"),
+                          ({"step_down_db": 0.0}, "step_down_db"),
+                          ({"settle_s": -1.0}, "settle_s"), ({"hold": 0}, "hold"),
+                          ({"hold": 2.5}, "hold")):
+            kw = dict({"set_gain": None, "gain_db": 30.0, "min_db": 0.0}, **bad)
+            with self.assertRaisesRegex(ValueError, name):
+                gain_loop(**kw)
+        with self.assertRaisesRegex(ValueError, "gain_db"):
+            loop.set_gain_db(-1.0)
+
     def test_a_radio_takes_the_gain_loops_commands(self):
         # gain_loop (no setter: the GRC block) -> a radio_source's command port: each
         # {"gain": dB} reaches the radio's setter; other messages are counted and dropped
@@ -260,16 +307,16 @@ class qa_faults(gr_unittest.TestCase):
                     {"time": 1.0 * k, "valid": True, "peak_dbfs": peak,
                      "clipped": peak >= 0.0}))
             for bad in (pmt.intern("gain"), pmt.to_pmt({"gain": "high"}),
-                        pmt.to_pmt({"volume": 3.0})):
+                        pmt.to_pmt({"volume": 3.0}), pmt.to_pmt({"gain": float("nan")})):
                 radio.to_basic_block()._post(pmt.intern("command"), bad)
             deadline = time.time() + 5.0
-            while (len(got) < 2 or radio.dropped < 3) and time.time() < deadline:
+            while (len(got) < 2 or radio.dropped < 4) and time.time() < deadline:
                 time.sleep(0.01)
         finally:
             tb.stop()
             tb.wait()
         self.assertEqual(got, [20.0, 10.0])  # two clipped windows, 10 dB each
-        self.assertEqual(radio.dropped, 3)
+        self.assertEqual(radio.dropped, 4)
 
     def test_rfseek_live_puts_the_gain_loop_on_radios_and_rehearsals(self):
         import argparse

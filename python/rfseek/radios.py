@@ -485,14 +485,26 @@ class _commands(gr.basic_block):
     def on_command(self, msg):
         try:
             d = pmt.to_python(msg)
+            if not isinstance(d, dict):
+                raise ValueError("not a dict")
             calls = [(self.setters[k], float(v)) for k, v in d.items() if k in self.setters]
             if not calls:
                 raise ValueError("no key of %s" % sorted(self.setters))
-            for setter, value in calls:
-                setter(value)
+            if not all(math.isfinite(v) for _, v in calls):
+                raise ValueError("a value is not a finite number")
         except (AttributeError, TypeError, ValueError) as e:
-            self.dropped += 1
-            gr.log.warn("radio_source: command %s dropped: %s" % (msg, e))
+            self._drop(msg, e)
+            return
+        for setter, value in calls:
+            try:
+                setter(value)
+            except Exception as e:  # a refused value, a driver's error: the block goes on
+                self._drop(msg, e)
+                return
+
+    def _drop(self, msg, why):
+        self.dropped += 1
+        gr.log.warn("radio_source: command %s dropped: %s" % (msg, why))
 
 
 class _rail_iq(gr.hier_block2):

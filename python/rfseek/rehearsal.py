@@ -34,7 +34,8 @@ from .radios import radio_rx_chain, rx_plan, sim_radio
 class overflow_injector(gr.basic_block):
     """A receiver's overflows: `lost` samples dropped every `every_s` seconds (the first
     after one period, each at a random point of its period drawn from `seed`), and the
-    next sample tagged with its true rx_time, as UHD does after an "O". rx_time at the
+    next sample tagged with its true rx_time (and an rx_rate tag dropped with the
+    samples, if any), as UHD does after an "O". rx_time at the
     first sample is 0 (the stream's clock); other tags pass at their new places. Counts:
     overflows, lost_samples."""
 
@@ -56,7 +57,8 @@ class overflow_injector(gr.basic_block):
         self._next = self._draw(1)
         self.overflows = self.lost_samples = 0
         self._tag_time = True  # rx_time due at the next output sample
-        self._time = pmt.intern("rx_time")
+        self._time, self._rate = pmt.intern("rx_time"), pmt.intern("rx_rate")
+        self._held_rate = None
 
     def _draw(self, k):
         return k * self.every + int(self._rng.integers(0, self.every - self.lost))
@@ -66,6 +68,9 @@ class overflow_injector(gr.basic_block):
         n_in, n_out = self.nitems_read(0), self.nitems_written(0)
         if n_in >= self._next:  # inside a drop: consumed, nothing out
             k = min(self._next + self.lost - n_in, len(x))
+            for t in self.get_tags_in_window(0, 0, k):  # a rate tag lost in the drop
+                if pmt.eq(t.key, self._rate):             # goes out with the next time
+                    self._held_rate = t.value
             self.consume(0, k)
             if n_in + k == self._next + self.lost:
                 self.overflows += 1
@@ -81,6 +86,9 @@ class overflow_injector(gr.basic_block):
             secs = n_in / self.rate
             self.add_item_tag(0, n_out, self._time, pmt.make_tuple(
                 pmt.from_uint64(int(secs)), pmt.from_double(secs - int(secs))))
+            if self._held_rate is not None:
+                self.add_item_tag(0, n_out, self._rate, self._held_rate)
+                self._held_rate = None
             self._tag_time = False
         self.consume(0, k)
         return k

@@ -215,6 +215,10 @@ void seeking_controller_impl::handle_meas(const pmt::pmt_t& msg)
 
 bool seeking_controller_impl::start()
 {
+    if (d_watchdog.joinable()) { // (started twice without a stop)
+        d_running = false;
+        d_watchdog.join();
+    }
     d_running = true;
     d_watchdog = std::thread([this] {
         while (d_running) {
@@ -232,11 +236,11 @@ bool seeking_controller_impl::stop()
     if (d_watchdog.joinable())
         d_watchdog.join();
     gr::thread::scoped_lock lock(d_setlock);
-    drain(true); // (what waits is answered, not lost)
+    drain(true, true); // (what waits is answered at once, not lost)
     return block::stop();
 }
 
-void seeking_controller_impl::drain(bool watchdog)
+void seeking_controller_impl::drain(bool watchdog, bool force)
 {
     const double half_slot = 0.5 * d_seeker->config().slot_period_s;
     while (!d_pending.empty()) {
@@ -249,9 +253,9 @@ void seeking_controller_impl::drain(bool watchdog)
             d_nav.latest_measured() - m.time_s >= d_nav_wait_s || d_pending.size() > 256;
         // Waited 0.5 s of host time (a lockstep source waits for the cmd, or the link is
         // slower than the world): answered with the reports there are.
-        const bool overdue =
-            watchdog && std::chrono::steady_clock::now() - d_pending_since.front() >
-                            std::chrono::milliseconds(500);
+        const bool overdue = force || (watchdog && std::chrono::steady_clock::now() -
+                                                           d_pending_since.front() >
+                                                       std::chrono::milliseconds(500));
         if (!ready && !overdue)
             return;
         if (overdue && !ready && !d_logged_wait) {

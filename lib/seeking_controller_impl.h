@@ -57,7 +57,7 @@ private:
     void handle_nav(const pmt::pmt_t& msg);
     // Measurements waiting for the nav report of their time (in order), and their
     // processing once it has come or nav_wait_s of later windows have.
-    void drain(bool watchdog = false);
+    void drain(bool watchdog = false, bool force = false);
     void process(measurement m);
     std::deque<measurement> d_pending;
     std::deque<std::chrono::steady_clock::time_point> d_pending_since;

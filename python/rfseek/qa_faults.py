@@ -334,6 +334,28 @@ class qa_faults(gr_unittest.TestCase):
         plain = rfseek.channel_source(sc, lockstep=False)
         self.assertIsNone(live_options.gain_control(on, plain))
 
+    def test_a_window_waiting_for_its_report_is_answered_at_stop(self):
+        # Reports up to 1 s, then a window at 2.5 s that waits for the report of its
+        # time: stopping the flowgraph at once (well before the 0.5 s watchdog) answers
+        # it, without a heading (none within 1 s), rather than losing it.
+        ctl = rfseek.seeking_controller(rfseek.seeker_config())
+        dbg = blocks.message_debug()
+        tb = gr.top_block()
+        tb.msg_connect(ctl, "telemetry", dbg, "store")
+        tb.start()
+        for k in range(11):
+            ctl.to_basic_block()._post(pmt.intern("nav"),
+                                       pmt.to_pmt({"heading": 0.0, "time": 0.1 * k}))
+        ctl.to_basic_block()._post(pmt.intern("meas"), pmt.to_pmt(
+            {"slot": 50, "time": 2.5, "freq_hz": 10.0, "valid": True}))
+        deadline = time.time() + 5.0
+        while ctl.meas_count() < 1 and time.time() < deadline:
+            time.sleep(0.002)
+        tb.stop()
+        tb.wait()
+        self.assertEqual(ctl.meas_count(), 1)
+        self.assertEqual(ctl.unpaired_count(), 1)
+
     def test_the_controller_pairs_each_window_with_the_report_nearest_in_time(self):
         # Heading reports every 0.1 s of a turn at 0.5 rad/s, posted out of order, then
         # windows: at 0.53 s the heading is the reports' around it; at 2.5 s no report is

@@ -343,17 +343,28 @@ class qa_faults(gr_unittest.TestCase):
         tb = gr.top_block()
         tb.msg_connect(ctl, "telemetry", dbg, "store")
         tb.start()
+        post = lambda port, d: ctl.to_basic_block()._post(pmt.intern(port), pmt.to_pmt(d))
         for k in range(11):
-            ctl.to_basic_block()._post(pmt.intern("nav"),
-                                       pmt.to_pmt({"heading": 0.0, "time": 0.1 * k}))
-        ctl.to_basic_block()._post(pmt.intern("meas"), pmt.to_pmt(
-            {"slot": 50, "time": 2.5, "freq_hz": 10.0, "valid": True}))
-        deadline = time.time() + 5.0
-        while ctl.meas_count() < 1 and time.time() < deadline:
+            post("nav", {"heading": 0.0, "time": 0.1 * k})
+        # (nav and meas are separate queues: windows within the reports until one comes
+        # back paired, so the reports are in before the window that must wait.)
+        deadline = time.time() + 10.0
+        paired, k = False, 0
+        while not paired and time.time() < deadline:
+            post("meas", {"slot": 10 + k, "time": min(0.5 + 0.005 * k, 0.95), "freq_hz": 10.0,
+                          "valid": True})
+            k += 1
+            time.sleep(0.01)
+            paired = any(pmt.to_python(dbg.get_message(i)).get("nav_paired")
+                         for i in range(dbg.num_messages()))
+        self.assertTrue(paired)
+        n = ctl.meas_count()
+        post("meas", {"slot": 50, "time": 2.5, "freq_hz": 10.0, "valid": True})
+        while ctl.meas_count() < n + 1 and time.time() < deadline:
             time.sleep(0.002)
         tb.stop()
         tb.wait()
-        self.assertEqual(ctl.meas_count(), 1)
+        self.assertEqual(ctl.meas_count(), n + 1)
         self.assertEqual(ctl.unpaired_count(), 1)
 
     def test_the_controller_pairs_each_window_with_the_report_nearest_in_time(self):

@@ -334,33 +334,42 @@ class qa_faults(gr_unittest.TestCase):
         plain = rfseek.channel_source(sc, lockstep=False)
         self.assertIsNone(live_options.gain_control(on, plain))
 
-    def test_a_window_waiting_for_its_report_is_answered_at_stop(self):
-        # Reports up to 1 s, then a window at 2.5 s that waits for the report of its
-        # time: stopping the flowgraph at once (well before the 0.5 s watchdog) answers
-        # it, without a heading (none within 1 s), rather than losing it.
+    def _controller_with_reports(self, reports):
+        """A running controller (telemetry into a message_debug) that has handled the
+        nav `reports` ((heading, time) pairs): windows within them are sent until one
+        comes back paired (nav and meas are separate queues). Returns (top block,
+        controller, message_debug, post, the telemetry messages so far)."""
         ctl = rfseek.seeking_controller(rfseek.seeker_config())
         dbg = blocks.message_debug()
         tb = gr.top_block()
         tb.msg_connect(ctl, "telemetry", dbg, "store")
         tb.start()
         post = lambda port, d: ctl.to_basic_block()._post(pmt.intern(port), pmt.to_pmt(d))
-        for k in range(11):
-            post("nav", {"heading": 0.0, "time": 0.1 * k})
-        # (nav and meas are separate queues: windows within the reports until one comes
-        # back paired, so the reports are in before the window that must wait.)
-        deadline = time.time() + 10.0
+        for heading, t in reports:
+            post("nav", {"heading": heading, "time": t})
+        first = min(t for _, t in reports)
+        deadline = time.monotonic() + 10.0
         paired, k = False, 0
-        while not paired and time.time() < deadline:
-            post("meas", {"slot": 10 + k, "time": min(0.5 + 0.005 * k, 0.95), "freq_hz": 10.0,
+        while not paired and time.monotonic() < deadline:
+            k = min(k + 1, 10)
+            post("meas", {"slot": k, "time": first + 0.01 * k, "freq_hz": 10.0,
                           "valid": True})
-            k += 1
             time.sleep(0.01)
             paired = any(pmt.to_python(dbg.get_message(i)).get("nav_paired")
                          for i in range(dbg.num_messages()))
         self.assertTrue(paired)
+        return tb, ctl, dbg, post, dbg.num_messages()
+
+    def test_a_window_waiting_for_its_report_is_answered_at_stop(self):
+        # Reports up to 1 s, then a window at 2.5 s that waits for the report of its
+        # time: stopping the flowgraph at once (well before the 0.5 s watchdog) answers
+        # it, without a heading (none within 1 s), rather than losing it.
+        tb, ctl, dbg, post, _ = self._controller_with_reports(
+            [(0.0, 0.1 * k) for k in range(11)])
         n = ctl.meas_count()
         post("meas", {"slot": 50, "time": 2.5, "freq_hz": 10.0, "valid": True})
-        while ctl.meas_count() < n + 1 and time.time() < deadline:
+        deadline = time.monotonic() + 10.0
+        while ctl.meas_count() < n + 1 and time.monotonic() < deadline:
             time.sleep(0.002)
         tb.stop()
         tb.wait()
@@ -371,28 +380,20 @@ class qa_faults(gr_unittest.TestCase):
         # Heading reports every 0.1 s of a turn at 0.5 rad/s, posted out of order, then
         # windows: at 0.53 s the heading is the reports' around it; at 2.5 s no report is
         # within 1 s: no heading, and the telemetry says so.
-        ctl = rfseek.seeking_controller(rfseek.seeker_config())
-        dbg = blocks.message_debug()
-        tb = gr.top_block()
-        tb.msg_connect(ctl, "telemetry", dbg, "store")
-        tb.start()
+        tb, ctl, dbg, post, n = self._controller_with_reports(
+            [(0.05 * k, 0.1 * k) for k in (0, 3, 1, 2, 5, 4, 7, 6, 9, 8, 10)])
         try:
-            for k in (0, 3, 1, 2, 5, 4, 7, 6, 9, 8, 10):
-                ctl.to_basic_block()._post(pmt.intern("nav"),
-                                           pmt.to_pmt({"heading": 0.05 * k, "time": 0.1 * k}))
-            time.sleep(1.0)  # (nav and meas are separate queues: the reports first)
             # (The window at 2.5 s waits for a report of its time until a window 0.5 s
             # later has come, or 0.5 s of host time: then the last one is answered too.)
             for slot, t in ((11, 0.53), (12, 1.02), (50, 2.5), (62, 3.1)):
-                ctl.to_basic_block()._post(pmt.intern("meas"), pmt.to_pmt(
-                    {"slot": slot, "time": t, "freq_hz": 10.0, "valid": True}))
+                post("meas", {"slot": slot, "time": t, "freq_hz": 10.0, "valid": True})
             deadline = time.monotonic() + 10.0
-            while dbg.num_messages() < 4 and time.monotonic() < deadline:
+            while dbg.num_messages() < n + 4 and time.monotonic() < deadline:
                 time.sleep(0.01)
         finally:
             tb.stop()
             tb.wait()
-        tel = [pmt.to_python(dbg.get_message(i)) for i in range(dbg.num_messages())]
+        tel = [pmt.to_python(dbg.get_message(i)) for i in range(n, dbg.num_messages())]
         # Every window answered: a lockstep source waits for each cmd.
         self.assertEqual(len(tel), 4)
         self.assertAlmostEqual(tel[0]["flown_heading"], 0.265, places=12)

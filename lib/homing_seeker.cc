@@ -71,6 +71,10 @@ public:
           d_next_fit_s(cfg.locate_orbits * 2.0 * M_PI * cfg.loiter_radius_m /
                        cfg.speed_mps)
     {
+        locator_nuisance nu;
+        nu.altimeter_m = cfg.locate_altimeter_range_m;
+        nu.airspeed_mps = cfg.speed_mps;
+        d_locator.set_nuisance(nu);
     }
 
     command update(const measurement& m) override
@@ -167,6 +171,7 @@ private:
         d_centred = false;
         d_x = d_y = 0.0;
         d_first_orbit.clear();
+        d_candidate = emitter_location();
         d_next_fit_s = d_cfg.locate_orbits * orbit_s();
         command r = d_inner->update(m);
         r.status = 0;
@@ -196,6 +201,67 @@ private:
         d_centred = true;
         const double r = std::hypot(l.east_m, l.north_m);
         return std::max(0.0, r - d_cfg.loiter_radius_m) / d_cfg.speed_mps;
+    }
+
+    // An earlier fix l carried to time t, unsure: in the dead-reckoned (air) frame the
+    // emitter drifts with minus the wind, whose uncertainty grows the ellipses.
+    static emitter_location carried(emitter_location l, double t)
+    {
+        const double dt = std::max(t - l.time_s, 0.0);
+        l.east_m -= l.wind_east_mps * dt;
+        l.north_m -= l.wind_north_mps * dt;
+        const double s2 = std::pow(l.wind_sigma_mps * dt, 2);
+        const double chi2_95 = 5.991464547107979, chi2_50 = 1.3862943611198906;
+        l.major_m = std::sqrt(l.major_m * l.major_m + chi2_95 * s2);
+        l.minor_m = std::sqrt(l.minor_m * l.minor_m + chi2_95 * s2);
+        l.major50_m = std::sqrt(l.major50_m * l.major50_m + chi2_50 * s2);
+        l.minor50_m = std::sqrt(l.minor50_m * l.minor50_m + chi2_50 * s2);
+        l.time_s = t;
+        l.unsure = true;
+        return l;
+    }
+
+    // The unsure fix at time t: the first confirmed fit carried to t, or a fit of
+    // everything now, whichever has the smaller 95 % ellipse (the carried fit's grows
+    // with the wind's uncertainty; a fit over more data drifts with the gusts).
+    emitter_location unsure_fix(double t) const
+    {
+        emitter_location l = carried(d_candidate, t);
+        emitter_location now = d_locator.fit(d_x, d_y, d_cfg.locate_nuisance);
+        if (now.valid && height_agrees(now) && d_cfg.locate_split_gate > 0.0)
+            d_locator.check_split(now, d_cfg.locate_split_gate);
+        if (now.valid && height_agrees(now) && now.major_m < l.major_m) {
+            now.unsure = true;
+            return now;
+        }
+        return l;
+    }
+
+    // A fit l that confirms the estimate orbited: arrived (if not yet); its ellipse
+    // carries what the flight does not know and is checked against its data's halves
+    // (after the retarget, which it does not change); published if sure, else more
+    // orbits around this estimate.
+    void confirmed(emitter_location l, double loitered, command& c)
+    {
+        if (d_cfg.locate_nuisance) {
+            const emitter_location h = d_locator.fit(d_x, d_y, true);
+            if (h.valid)
+                l = h;
+        }
+        if (d_cfg.locate_split_gate > 0.0)
+            d_locator.check_split(l, d_cfg.locate_split_gate);
+        const bool fix = l.major_m <= d_cfg.locate_max_axis_m;
+        if (!d_candidate.valid) // the first: the least drift in its data
+            d_candidate = l;
+        if (d_status == 0) { // arrived now; located with the next slot
+            d_status = 1;
+            if (fix)
+                d_pending = l;
+            else // time for more fits around this estimate
+                extend_deadline(loitered, 0.0);
+        } else if (fix) {
+            publish_fix(l, c);
+        }
     }
 
     // The fix l is the location: located, done.
@@ -293,20 +359,7 @@ private:
                           d_cfg.arrival_confirm_m + d_cfg.loiter_radius_m));
                 const double transit = retarget(l, m.time_s);
                 if (agrees) {
-                    const bool fix = l.major_m <= d_cfg.locate_max_axis_m;
-                    // The fix's ellipse, checked against its data's halves (after the
-                    // retarget above, which it does not change).
-                    if (fix && d_cfg.locate_split_gate > 0.0)
-                        d_locator.check_split(l, d_cfg.locate_split_gate);
-                    if (d_status == 0) { // arrived now; located with the next slot
-                        d_status = 1;
-                        if (fix)
-                            d_pending = l;
-                        else // time for more fits around this estimate
-                            extend_deadline(loitered, 0.0);
-                    } else if (fix) {
-                        publish_fix(l, c);
-                    }
+                    confirmed(l, loitered, c);
                 } else {
                     // Fly to the new estimate and orbit it; each move (a few at most)
                     // extends the time allowed.
@@ -317,7 +370,12 @@ private:
             }
             d_next_fit_s = loitered + next * orbit_s();
         }
-        if (!d_done && !d_pending.valid && loitered >= d_deadline_s) {
+        if (!d_done && !d_pending.valid && loitered >= d_deadline_s && d_status == 1 &&
+            d_candidate.valid) {
+            // Arrived, but no fix as tight as the limit within the budget: the last
+            // confirmed fix, published as unsure with its honest ellipse.
+            publish_fix(unsure_fix(m.time_s), c);
+        } else if (!d_done && !d_pending.valid && loitered >= d_deadline_s) {
             // No fix: not the emitter's overflight after all, or too poor a geometry:
             // seek again (the strategy resumes where it was), detect anew.
             if (d_cfg.locate_retry)
@@ -387,8 +445,9 @@ private:
     bool d_loitering = false; // stage 3: orbiting (checking, arrived or located)
     bool d_done = false;
     int d_retargets = 0;
-    double d_deadline_s = 0.0;  // loiter time after which the vehicle gives up
-    emitter_location d_pending; // confirmed fix, published with the next slot
+    double d_deadline_s = 0.0;    // loiter time after which the vehicle gives up
+    emitter_location d_pending;   // confirmed fix, published with the next slot
+    emitter_location d_candidate; // the first confirmed fit (published unsure)
     double d_heading_cmd = 0.0, d_last_heading = 0.0, d_loiter_start = 0.0;
     heading_filter d_heading_filter; // the heading read, smoothed for dead reckoning
     std::uint64_t d_read_slot = 0;   // slot of the last heading read

@@ -163,6 +163,8 @@ void validate_arrival(const seeker_config& c)
         bad("locate_gust_tau_s", c.locate_gust_tau_s, "in [0.1, 3600] s");
     if (!(c.locate_split_gate >= 0.0 && c.locate_split_gate <= 1e6))
         bad("locate_split_gate", c.locate_split_gate, "0 (off) or in (0, 1e6]");
+    if (!(c.locate_altimeter_range_m >= 0.0 && c.locate_altimeter_range_m <= 1000.0))
+        bad("locate_altimeter_range_m", c.locate_altimeter_range_m, "in [0, 1000] m");
     if (!std::isnan(c.locate_altitude_m) &&
         !(c.locate_altitude_m >= 0.0 && c.locate_altitude_m <= 1e4))
         bad("locate_altitude_m", c.locate_altitude_m, "in [0, 1e4] m, or NaN (unknown)");
@@ -313,6 +315,8 @@ std::vector<std::string> seeker_config::keys()
              "locate_gust_mps",
              "locate_gust_tau_s",
              "locate_split_gate",
+             "locate_nuisance",
+             "locate_altimeter_range_m",
              "locate_altitude_m",
              "locate_altitude_sigma_m" };
 }
@@ -412,6 +416,8 @@ const std::map<std::string, seeker_setting>& settings()
         RFSEEK_SETTING(locate_gust_mps, locate_gust_mps, real),
         RFSEEK_SETTING(locate_gust_tau_s, locate_gust_tau_s, real),
         RFSEEK_SETTING(locate_split_gate, locate_split_gate, real),
+        RFSEEK_SETTING(locate_nuisance, locate_nuisance, boolean),
+        RFSEEK_SETTING(locate_altimeter_range_m, locate_altimeter_range_m, real),
         RFSEEK_SETTING(locate_altitude_m, locate_altitude_m, real),
         RFSEEK_SETTING(locate_altitude_sigma_m, locate_altitude_sigma_m, real),
     };

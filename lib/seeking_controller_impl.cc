@@ -396,6 +396,9 @@ void seeking_controller_impl::publish_status(const command& c, double time_s)
         add("fix_time", l.time_s);
         add("rms_hz", l.rms_hz);
         add("consistency", l.consistency);
+        add("major50_m", l.major50_m);
+        add("minor50_m", l.minor50_m);
+        s = pmt::dict_add(s, pmt::mp("unsure"), pmt::from_bool(l.unsure));
     }
     message_port_pub(d_port_status, s);
 }

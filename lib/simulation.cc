@@ -141,6 +141,12 @@ run_result simulation::run(bool keep_records) const
             const double u = (ex * ca + ey * sa) / std::max(c.location.major_m, 1e-9);
             const double v = (-ex * sa + ey * ca) / std::max(c.location.minor_m, 1e-9);
             sm.location_in_ellipse = u * u + v * v <= 1.0;
+            const double u5 =
+                u * c.location.major_m / std::max(c.location.major50_m, 1e-9);
+            const double v5 =
+                v * c.location.minor_m / std::max(c.location.minor50_m, 1e-9);
+            sm.location_in_ellipse50 = u5 * u5 + v5 * v5 <= 1.0;
+            sm.location_unsure = c.location.unsure;
         }
         if (keep_records) {
             slot_record s;

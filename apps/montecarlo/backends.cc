@@ -74,11 +74,12 @@ std::string shell_quote(const std::string& s)
 gr::rfseek::run_summary read_summary(std::istream& ss)
 {
     gr::rfseek::run_summary s;
-    int success = 0, has1 = 0, arr = 0, decl = 0, fa = 0, loc = 0, in = 0, over = 0;
+    int success = 0, has1 = 0, arr = 0, decl = 0, fa = 0, loc = 0, in = 0, over = 0,
+        in50 = 0, unsure = 0;
     ss >> s.distance_m >> s.ratio >> s.straight_ratio >> s.time_s >> success >> s.slots >>
         has1 >> s.stage1_heading_error_rad >> arr >> decl >>
         s.arrival_detect_distance_m >> fa >> loc >> s.location_error_m >>
-        s.location_major_m >> in >> over >> s.overflight_distance_m;
+        s.location_major_m >> in >> over >> s.overflight_distance_m >> in50 >> unsure;
     s.overflight = over;
     s.success = success;
     s.has_stage1 = has1;
@@ -87,6 +88,8 @@ gr::rfseek::run_summary read_summary(std::istream& ss)
     s.false_arrival = fa;
     s.located = loc;
     s.location_in_ellipse = in;
+    s.location_in_ellipse50 = in50;
+    s.location_unsure = unsure;
     return s;
 }
 

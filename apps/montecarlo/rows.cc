@@ -66,6 +66,8 @@ void fill(row& r, const gr::rfseek::run_summary& s)
     r.loc_err_m = s.located ? printed(s.location_error_m) : 0.0;
     r.loc_major_m = s.located ? printed(s.location_major_m) : 0.0;
     r.in_ellipse = s.location_in_ellipse;
+    r.in_ellipse50 = s.location_in_ellipse50;
+    r.unsure = s.location_unsure;
     r.overflight = s.overflight;
     r.overflight_m = s.overflight ? printed(s.overflight_distance_m) : 0.0;
     r.error.clear();
@@ -92,7 +94,7 @@ std::string csv_layout::header() const
            "stage1_heading_error_deg" +
            (by_arrival ? ",declared,arrival_detect_distance_m,false_arrival,located,"
                          "location_error_m,location_major_m,location_in_ellipse,"
-                         "overflight_distance_m"
+                         "overflight_distance_m,location_unsure,location_in_ellipse50"
                        : "") +
            ",error";
 }
@@ -118,9 +120,10 @@ std::string csv_layout::line(const row& r, const std::vector<study_point>& point
               << (r.false_arrival ? 1 : 0) << "," << (r.located ? 1 : 0) << ","
               << (r.located ? num(r.loc_err_m) : "") << ","
               << (r.located ? num(r.loc_major_m) : "") << "," << (r.in_ellipse ? 1 : 0)
-              << "," << (r.overflight ? num(r.overflight_m) : "") << ",";
+              << "," << (r.overflight ? num(r.overflight_m) : "") << ","
+              << (r.unsure ? 1 : 0) << "," << (r.in_ellipse50 ? 1 : 0) << ",";
         else
-            c << ",,,,,,,,";
+            c << ",,,,,,,,,,";
     }
     if (!r.error.empty())
         c << "," << one_line(r.error);
@@ -185,6 +188,8 @@ void read_results(row& r, const std::vector<std::string>& c, std::size_t k, bool
     r.in_ellipse = c[a + 6] == "1";
     r.overflight = !c[a + 7].empty();
     r.overflight_m = r.overflight ? cell_number("overflight", c[a + 7]) : 0.0;
+    r.unsure = c[a + 8] == "1";
+    r.in_ellipse50 = c[a + 9] == "1";
 }
 
 } // namespace

@@ -31,7 +31,7 @@ struct row {
     double stage1_deg = 0;
     // --arrival self (docs/seeker.md): the arrival and location columns
     bool arrival = false, declared = false, false_arrival = false, located = false,
-         in_ellipse = false;
+         in_ellipse = false, in_ellipse50 = false, unsure = false;
     double detect_m = 0, loc_err_m = 0, loc_major_m = 0;
     bool overflight = false;
     double overflight_m = 0;

@@ -33,7 +33,8 @@ select(const std::vector<row>& rows, std::size_t point, const std::string& strat
 void arrival_summary(json& o, const std::vector<const row*>& rows, double n)
 {
     std::vector<double> detect, loc_err, major, over;
-    int declared = 0, near = 0, false_arr = 0, inside = 0, over_near = 0;
+    int declared = 0, near = 0, false_arr = 0, inside = 0, inside50 = 0, unsure = 0,
+        over_near = 0, fix_near = 0;
     for (const row* r : rows) {
         if (!r->error.empty())
             continue;
@@ -51,6 +52,9 @@ void arrival_summary(json& o, const std::vector<const row*>& rows, double n)
             loc_err.push_back(r->loc_err_m);
             major.push_back(r->loc_major_m);
             inside += r->in_ellipse;
+            inside50 += r->in_ellipse50;
+            unsure += r->unsure;
+            fix_near += r->declared && r->detect_m <= 300.0;
         }
     }
     const double nl = std::max<std::size_t>(loc_err.size(), 1);
@@ -69,6 +73,10 @@ void arrival_summary(json& o, const std::vector<const row*>& rows, double n)
     o["location_error_m_p90"] = num(percentile(loc_err, 0.9));
     o["location_major_m_median"] = num(percentile(major, 0.5));
     o["location_in_ellipse_rate"] = num(inside / nl);
+    o["location_in_ellipse50_rate"] = num(inside50 / nl);
+    o["located_sure_rate"] = num((loc_err.size() - unsure) / n);
+    o["located_unsure_rate"] = num(unsure / n);
+    o["located_within_300m_rate"] = num(fix_near / n);
 }
 
 double mean(const std::vector<double>& v)
@@ -108,6 +116,8 @@ json row_json(const row& r, const options& o)
     j["location_error_m"] = r.located ? num(r.loc_err_m) : json(nullptr);
     j["location_major_m"] = r.located ? num(r.loc_major_m) : json(nullptr);
     j["location_in_ellipse"] = r.in_ellipse;
+    j["location_in_ellipse50"] = r.in_ellipse50;
+    j["location_unsure"] = r.unsure;
     j["overflight_distance_m"] = r.overflight ? num(r.overflight_m) : json(nullptr);
     return j;
 }

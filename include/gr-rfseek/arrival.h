@@ -185,6 +185,46 @@ struct RFSEEK_API emitter_location {
     int gust_knots = 0;          //!< gust states per axis (0: constant wind)
     double inflation = 1.0;      //!< covariance inflation for correlated residuals
     double consistency = -1.0;   //!< the split check's T (check_split; -1: not run)
+    double major50_m = 0.0;      //!< 50 % uncertainty ellipse: semi-major axis
+    double minor50_m = 0.0;      //!< semi-minor axis (same direction as the 95 %)
+    //! The nuisance models the ellipse carries (fit with nuisance: 9; else 1).
+    int hypotheses = 1;
+    //! RMS distance of the nuisance models' fixes from their mean (m).
+    double model_spread_m = 0.0;
+    //! RMS of the gust states the fit found (m/s per axis; 0 without gust states).
+    double gust_rms_mps = 0.0;
+    //! Published although its 95 % ellipse is larger than the seeker's limit
+    //! (locate_max_axis_m): the loiter's budget ran out. The ellipse is still honest.
+    bool unsure = false;
+};
+
+/*!
+ * What the fix does not know, carried into its ellipse (emitter_locator::fit with
+ * nuisance). The fix is refitted on the same measurements under every combination of
+ * the gust models {the prior (gust_mps, gust_tau_s); GUST_WIDE_MPS at GUST_TAUS_S} and
+ * the height priors {h, h - altimeter_m, h + altimeter_m} (altimeter_m 0 or no height
+ * prior: h only). The models are weighted by their Laplace evidence on the first model's
+ * noise variance (inflated); the fix is the weighted mean, its covariance the weighted
+ * covariances plus the spread of the means. The 95 % and 50 % ellipses are that
+ * covariance's chi-square contours, their radii times factors calibrated across the
+ * envelope (docs/seeker.md, "How honest the ellipse is") as functions of what the fit
+ * itself found: the gusts' RMS (gust_rms_mps) and the mean wind over the airspeed. The
+ * errors of a fix in strong or gusty air have long tails that no one Gaussian contour
+ * follows: the 95 % factor grows far more than the 50 %.
+ */
+struct RFSEEK_API locator_nuisance {
+    double altimeter_m = 30.0; //!< altimeter error carried (m, 0..1000)
+    //! false: the mixture's own chi-square contours, without the calibrated factors
+    //! (the Bayesian model average alone).
+    bool calibrated = true;
+    //! The user's own factors on top of the calibrated ones (0.1..10).
+    double scale95 = 1.0;
+    double scale50 = 1.0;
+    //! The vehicle's airspeed (m/s, 0.1..1000): the calibration's wind is a fraction
+    //! of it.
+    double airspeed_mps = 10.0;
+    static constexpr double GUST_WIDE_MPS = 3.0;
+    static constexpr std::array<double, 2> GUST_TAUS_S{ { 15.0, 60.0 } };
 };
 
 /*!
@@ -225,8 +265,14 @@ public:
              double freq_hz);
     std::size_t size() const { return d_t.size(); }
     void clear();
-    //! Fit everything added; vehicle_x/y: its dead-reckoned position at the fix.
-    emitter_location fit(double vehicle_x_m, double vehicle_y_m) const;
+    //! Fit everything added; vehicle_x/y: its dead-reckoned position at the fix. With
+    //! nuisance, the fix carries the models of set_nuisance() (locator_nuisance).
+    emitter_location
+    fit(double vehicle_x_m, double vehicle_y_m, bool nuisance = false) const;
+    //! The nuisance models carried by fit(x, y, true); std::invalid_argument (naming
+    //! the field) outside the ranges of locator_nuisance.
+    void set_nuisance(const locator_nuisance& n);
+    const locator_nuisance& nuisance() const { return d_nuisance; }
     /*!
      * The split check of l, the fit of everything added: the two halves of the data in
      * time are fitted apart, and l.consistency is set to their disagreement T in the
@@ -245,7 +291,9 @@ private:
                                std::size_t end,
                                double vehicle_x_m,
                                double vehicle_y_m,
-                               std::array<double, 16>* cov_out) const;
+                               std::array<double, 16>* cov_out,
+                               bool nuisance = false) const;
+    locator_nuisance d_nuisance;
     double d_lambda, d_search, d_gust, d_gust_tau, d_alt, d_alt_sigma;
     std::vector<double> d_t, d_x, d_y, d_vx, d_vy, d_f;
 };

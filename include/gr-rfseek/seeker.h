@@ -167,6 +167,12 @@ struct RFSEEK_API seeker_config {
     //! for a right ellipse) exceeds this gate, the published ellipse grows by
     //! sqrt(T / 2). 5.99: the 95 % point; 0: off.
     double locate_split_gate = 5.99;
+    //! The fix carries what the flight does not know (locator_nuisance): it is refitted
+    //! under wide gust models and altimeter readings off by +- locate_altimeter_range_m
+    //! and its ellipse is theirs, mixed by evidence and calibrated
+    //! (docs/seeker.md, "How honest the ellipse is"); false: the prior's fit alone.
+    bool locate_nuisance = true;
+    double locate_altimeter_range_m = 30.0; //!< altimeter error carried (m, 0..1000)
     //! The vehicle's height above the ground the emitter stands on, as its altimeter /
     //! autopilot holds it (m; NaN: unknown): the location fit's prior on the height,
     //! with std locate_altitude_sigma_m, the altimeter's stated accuracy (m; 0: the

@@ -87,8 +87,10 @@ struct RFSEEK_API run_summary {
     double location_error_m = 0.0; //!< |estimated - true| emitter offset at the fix
     double location_major_m = 0.0; //!< 95 % ellipse semi-axes of the fix
     double location_minor_m = 0.0;
-    bool location_in_ellipse = false; //!< the truth lies inside the 95 % ellipse
-    double total_distance_m = 0.0;    //!< flown until the run ended (loiter included)
+    bool location_in_ellipse = false;   //!< the truth lies inside the 95 % ellipse
+    bool location_in_ellipse50 = false; //!< the truth lies inside the 50 % ellipse
+    bool location_unsure = false;  //!< the fix was published unsure (emitter_location)
+    double total_distance_m = 0.0; //!< flown until the run ended (loiter included)
 };
 
 struct RFSEEK_API run_result {

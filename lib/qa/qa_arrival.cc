@@ -592,50 +592,64 @@ TEST(homing_seeker, a_fit_whose_height_contradicts_the_altimeter_is_not_trusted)
     EXPECT_TRUE(r.summary.success);
 }
 
-TEST(homing_seeker, without_a_fix_seeks_again_or_gives_up)
+TEST(homing_seeker, without_a_confirmed_fit_seeks_again_or_gives_up)
 {
-    // A fix can never be good enough (95 % ellipse under 1 mm): with locate_retry the
-    // vehicle goes back to seeking after locate_max_orbits and declares again; without
-    // it, the run ends there, declared and not located. (How often the vehicle
-    // declares again within the cap varies from seed to seed: 0-5 times over seeds
-    // 1-12; seed 5 declares three times.)
+    // No fit can confirm the estimate orbited (arrival_confirm_m 1 mm): with
+    // locate_retry the vehicle goes back to seeking after locate_max_orbits and
+    // loiters again at its next overflight; without it the run ends there, neither
+    // declared nor located.
     scenario sc;
     sc.seed = 5;
     sc.self_arrival = true;
     sc.flight_cap_m = 12000.0; // room for a second approach after the first loiter
     seeker_config cfg = simulation::seeker_for(sc, "adaptive");
-    cfg.locate_max_axis_m = 1e-3;
+    cfg.arrival_confirm_m = 1e-3;
     cfg.locate_retry = false;
     const run_result give_up = simulation(sc, cfg).run(true);
-    EXPECT_TRUE(give_up.summary.declared);
+    EXPECT_TRUE(give_up.summary.overflight);
+    EXPECT_FALSE(give_up.summary.declared);
     EXPECT_FALSE(give_up.summary.located);
     EXPECT_LT(give_up.summary.total_distance_m, 12000.0 - 1.0); // ended by done
     cfg.locate_retry = true;
     const run_result retry = simulation(sc, cfg).run(true);
     EXPECT_FALSE(retry.summary.located);
-    int declarations = 0, prev = 0;
+    int loiters = 0, prev = 0;
     for (const auto& r : retry.records) {
-        declarations += prev == 0 && r.status == 1;
-        prev = r.status;
+        loiters += prev != 3 && r.stage == 3;
+        prev = r.stage;
     }
-    EXPECT_GE(declarations, 2); // seeking again after the first loiter, and arriving
+    EXPECT_GE(loiters, 2); // seeking again after the first loiter, and loitering again
     EXPECT_GT(retry.summary.total_distance_m, give_up.summary.total_distance_m);
-    // An arrival, once confirmed, is given locate_max_orbits - 1 more orbits of fits
-    // before the vehicle seeks again.
-    const double orbit_s = 2.0 * M_PI * cfg.loiter_radius_m / cfg.speed_mps;
-    double arrived_at = -1.0;
-    prev = 0;
-    int withdrawn = 0;
-    for (const auto& r : retry.records) {
-        if (prev == 0 && r.status == 1)
-            arrived_at = r.time_s;
-        if (prev == 1 && r.status == 0) {
-            ++withdrawn;
-            EXPECT_GE(r.time_s - arrived_at, (cfg.locate_max_orbits - 1.0) * orbit_s);
+}
+
+TEST(homing_seeker, a_fix_never_tight_enough_is_published_unsure_after_the_orbits_allowed)
+{
+    // A confirmed fix can never be sure (95 % ellipse under 1 mm): once arrived, the
+    // vehicle orbits locate_max_orbits - 1 more orbits of fits, then publishes the fix
+    // as unsure (seeking again or not), its ellipses honest and finite.
+    scenario sc;
+    sc.seed = 5;
+    sc.self_arrival = true;
+    seeker_config cfg = simulation::seeker_for(sc, "adaptive");
+    cfg.locate_max_axis_m = 1e-3;
+    for (bool retry : { false, true }) {
+        cfg.locate_retry = retry;
+        const run_result r = simulation(sc, cfg).run(true);
+        ASSERT_TRUE(r.summary.declared && r.summary.located) << retry;
+        EXPECT_TRUE(r.summary.location_unsure && r.location.unsure);
+        EXPECT_TRUE(std::isfinite(r.location.major_m) && r.location.major_m > 1e-3);
+        EXPECT_LT(r.location.major50_m, r.location.major_m);
+        EXPECT_LT(r.summary.location_error_m, 30.0);
+        double arrived_at = -1.0, located_at = -1.0;
+        for (const auto& q : r.records) {
+            if (arrived_at < 0.0 && q.status == 1)
+                arrived_at = q.time_s;
+            if (located_at < 0.0 && q.status == 2)
+                located_at = q.time_s;
         }
-        prev = r.status;
+        const double orbit_s = 2.0 * M_PI * cfg.loiter_radius_m / cfg.speed_mps;
+        EXPECT_GE(located_at - arrived_at, (cfg.locate_max_orbits - 1.0) * orbit_s);
     }
-    EXPECT_GE(withdrawn, 1);
 }
 
 TEST(homing_seeker, arrives_with_the_shortest_loiter_allowed)

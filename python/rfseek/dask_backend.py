@@ -12,6 +12,7 @@ strategy, a range of seeds) to the workers and prints one line per run as chunks
     ROW <job> <distance_m> <ratio> <straight_ratio> <time_s> <success> <slots> <has_stage1> <stage1_rad>
         <self_arrival> <declared> <detect_m> <false_arrival> <located> <loc_error_m>
         <loc_major_m> <in_ellipse> <overflight> <overflight_distance_m>
+        <in_ellipse50> <unsure>
     ERR <job> <message>
 
 Each worker runs ``study_point.run(strategy, seed)``, the C++ core through the bindings,
@@ -50,12 +51,13 @@ def run_chunk(spec, strategy, jobs):
     for job, seed in jobs:
         try:
             s = p.run(strategy, int(seed))
-            out.append("ROW %d %r %r %r %r %d %d %d %r %d %d %r %d %d %r %r %d %d %r" % (
+            out.append("ROW %d %r %r %r %r %d %d %d %r %d %d %r %d %d %r %r %d %d %r %d %d" % (
                 job, s.distance_m, s.ratio, s.straight_ratio, s.time_s, int(s.success), s.slots,
                 int(s.has_stage1), s.stage1_heading_error_rad, int(s.self_arrival),
                 int(s.declared), s.arrival_detect_distance_m, int(s.false_arrival),
                 int(s.located), s.location_error_m, s.location_major_m,
-                int(s.location_in_ellipse), int(s.overflight), s.overflight_distance_m))
+                int(s.location_in_ellipse), int(s.overflight), s.overflight_distance_m,
+                int(s.location_in_ellipse50), int(s.location_unsure)))
         except Exception as e:  # a run that raises is a row with its error
             out.append("ERR %d %s: %s" % (job, type(e).__name__, " ".join(str(e).split())))
     return out

@@ -160,7 +160,8 @@ def arrival_summary(states, status, telemetry=None):
     computes them: declared, arrival_detect_distance_m (true horizontal distance at the
     declaration), false_arrival (> 1 km), located, location (the first fix: east_m,
     north_m relative to the vehicle, major_m, minor_m, major_angle_rad), the vehicle's
-    true position then, location_error_m and location_in_ellipse. With the
+    true position then, location_error_m, location_in_ellipse (95 %),
+    location_in_ellipse50 and location_unsure. With the
     'telemetry' messages: overflight and overflight_distance_m (where the loiter, stage
     3, first began)."""
     by_slot = {int(s["slot"]): s for s in states}
@@ -183,13 +184,17 @@ def arrival_summary(states, status, telemetry=None):
         ca, sa = math.cos(fix["major_angle_rad"]), math.sin(fix["major_angle_rad"])
         u = (ex * ca + ey * sa) / max(fix["major_m"], 1e-9)
         v = (-ex * sa + ey * ca) / max(fix["minor_m"], 1e-9)
+        u5 = (ex * ca + ey * sa) / max(fix.get("major50_m", 0.0), 1e-9)
+        v5 = (-ex * sa + ey * ca) / max(fix.get("minor50_m", 0.0), 1e-9)
         out.update(located=True, location_slot=int(fix["slot"]),
                    location={k: fix[k] for k in (
                        "east_m", "north_m", "range_m", "bearing_rad", "major_m", "minor_m",
                        "major_angle_rad", "wind_east_mps", "wind_north_mps", "altitude_m",
-                       "rms_hz", "consistency")},
+                       "rms_hz", "consistency", "major50_m", "minor50_m", "unsure")},
                    vehicle_xy_at_fix=(st["x"], st["y"]),
                    estimated_emitter_xy=(st["x"] + fix["east_m"], st["y"] + fix["north_m"]),
                    location_error_m=math.hypot(ex, ey),
-                   location_in_ellipse=u * u + v * v <= 1.0)
+                   location_in_ellipse=u * u + v * v <= 1.0,
+                   location_in_ellipse50=u5 * u5 + v5 * v5 <= 1.0,
+                   location_unsure=bool(fix["unsure"]))
     return out

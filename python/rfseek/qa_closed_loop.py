@@ -93,6 +93,35 @@ class qa_closed_loop(gr_unittest.TestCase):
         self.assertTrue(loc.valid)
         self.assertAlmostEqual(loc.east_m, fix["east_m"])
 
+    def test_a_fix_over_the_limit_is_published_unsure(self):
+        # The same flight with a sure-fix limit no ellipse meets (5 m): the vehicle orbits
+        # the orbits allowed, then publishes an unsure fix with its honest ellipses
+        # (50 % inside 95 %), later than the sure one; through GNU Radio the status
+        # message says so. With the default limit (100 m) the fix is sure.
+        sc = rfseek.scenario(seed=2, self_arrival=True)
+        cfg = rfseek.simulation.seeker_for(sc, "adaptive")
+        sure = rfseek.simulation(sc, cfg).run()
+        cfg.locate_max_axis_m = 5.0
+        unsure = rfseek.simulation(sc, cfg).run()
+        self.assertTrue(sure.summary.located and not sure.summary.location_unsure)
+        self.assertFalse(sure.location.unsure)
+        self.assertLessEqual(sure.location.major_m, 100.0)
+        self.assertTrue(unsure.summary.located and unsure.summary.location_unsure)
+        self.assertTrue(unsure.location.unsure)
+        self.assertGreater(unsure.location.major_m, 5.0)
+        self.assertLess(unsure.location.major50_m, unsure.location.major_m)
+        self.assertLess(unsure.location.minor50_m, unsure.location.minor_m)
+        self.assertGreater(unsure.summary.time_s, sure.summary.time_s)
+        tb = flowgraphs.closed_loop(sc, cfg)
+        tb.run()
+        fix = tb.collector.status[-1]
+        self.assertEqual(fix["status"], "located")
+        self.assertTrue(fix["unsure"])
+        self.assertAlmostEqual(fix["major_m"], unsure.location.major_m, places=6)
+        a = flowgraphs.arrival_summary(tb.collector.states, tb.collector.status)
+        self.assertTrue(a["location_unsure"])
+        self.assertEqual(a["location_in_ellipse50"], unsure.summary.location_in_ellipse50)
+
     def test_status_without_self_arrival_says_seeking_once(self):
         sc = rfseek.scenario(seed=3, initial_distance_m=1000.0)
         tb = flowgraphs.closed_loop(sc, "paper")

@@ -4,11 +4,13 @@
  */
 
 /* BINDTOOL_HEADER_FILE(arrival.h) */
-/* BINDTOOL_HEADER_FILE_HASH(1d97b6e45f7a46eac2e5e3960c1b5b22) */
+/* BINDTOOL_HEADER_FILE_HASH(3bdb635fb987ec03e44fb8c5c388c3fe) */
 
 #include <gr-rfseek/arrival.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
+#include <cstdio>
+#include <string>
 
 namespace py = pybind11;
 
@@ -197,7 +199,71 @@ void bind_emitter_location_class(py::module& m)
                       &emitter_location::consistency,
                       "the split check's T: the disagreement of the data's halves, "
                       "chi-square with 2 degrees of freedom for a right ellipse (-1: "
-                      "not run)");
+                      "not run)")
+        .def_readonly("major50_m",
+                      &emitter_location::major50_m,
+                      "50 % uncertainty ellipse: semi-major axis")
+        .def_readonly("minor50_m", &emitter_location::minor50_m, "semi-minor axis")
+        .def_readonly("hypotheses",
+                      &emitter_location::hypotheses,
+                      "nuisance models the ellipse carries (1: the prior's only)")
+        .def_readonly("model_spread_m",
+                      &emitter_location::model_spread_m,
+                      "RMS distance of the nuisance models' fixes from their mean")
+        .def_readonly("gust_rms_mps",
+                      &emitter_location::gust_rms_mps,
+                      "RMS of the gust states the fit found (m/s per axis)")
+        .def_readonly("unsure",
+                      &emitter_location::unsure,
+                      "published with a 95 % ellipse larger than the seeker's limit "
+                      "(locate_max_axis_m) when the loiter's budget ran out")
+        .def("__repr__", [](const emitter_location& l) {
+            if (!l.valid)
+                return std::string("emitter_location(no fix)");
+            char b[256];
+            std::snprintf(b,
+                          sizeof b,
+                          "emitter_location(east_m=%.1f, north_m=%.1f, major_m=%.1f, "
+                          "minor_m=%.1f, major50_m=%.1f, %s)",
+                          l.east_m,
+                          l.north_m,
+                          l.major_m,
+                          l.minor_m,
+                          l.major50_m,
+                          l.unsure ? "unsure" : "sure");
+            return std::string(b);
+        });
+}
+
+void bind_locator_nuisance_class(py::module& m)
+{
+    using namespace gr::rfseek;
+    py::class_<locator_nuisance>(
+        m,
+        "locator_nuisance",
+        "What the fix does not know, carried into its ellipse: the fix refitted under "
+        "the gust prior and two wide gust models (3 m/s at 15 s and 60 s) x the "
+        "altimeter's reading and that reading +- altimeter_m, mixed by evidence; the "
+        "ellipses' radii times factors calibrated on the gusts and the wind the fit "
+        "found, and the user's scale95 and scale50.")
+        .def(py::init<>(),
+             "The defaults: 30 m of altimeter error, calibrated, the user's factors 1.")
+        .def_readwrite("altimeter_m",
+                       &locator_nuisance::altimeter_m,
+                       "altimeter error carried (m, 0..1000; 0: the reading only)")
+        .def_readwrite("calibrated",
+                       &locator_nuisance::calibrated,
+                       "False: the mixture's own chi-square contours, without the "
+                       "calibrated factors")
+        .def_readwrite("airspeed_mps",
+                       &locator_nuisance::airspeed_mps,
+                       "the vehicle's airspeed (m/s, 0.1..1000)")
+        .def_readwrite("scale95",
+                       &locator_nuisance::scale95,
+                       "the user's radius factor of the 95 % ellipse (0.1..10)")
+        .def_readwrite("scale50",
+                       &locator_nuisance::scale50,
+                       "the user's radius factor of the 50 % ellipse (0.1..10)");
 }
 
 void bind_emitter_locator_class(py::module& m)
@@ -233,8 +299,16 @@ void bind_emitter_locator_class(py::module& m)
              &emitter_locator::fit,
              py::arg("vehicle_x_m"),
              py::arg("vehicle_y_m"),
+             py::arg("nuisance") = false,
              py::call_guard<py::gil_scoped_release>(),
-             "Fit everything added; vehicle_x/y: its dead-reckoned position at the fix.")
+             "Fit everything added; vehicle_x/y: its dead-reckoned position at the fix. "
+             "nuisance: the fix carries the models of set_nuisance (locator_nuisance).")
+        .def("set_nuisance",
+             &emitter_locator::set_nuisance,
+             py::arg("nuisance"),
+             "The nuisance models fit(..., nuisance=True) carries; ValueError outside "
+             "locator_nuisance's ranges.")
+        .def("nuisance", &emitter_locator::nuisance, "The nuisance models carried.")
         .def(
             "check_split",
             [](const emitter_locator& self, emitter_location l, double gate) {
@@ -262,5 +336,6 @@ void bind_arrival(py::module& m)
     bind_doppler_amplitude_class(m);
     bind_overflight_detector_class(m);
     bind_emitter_location_class(m);
+    bind_locator_nuisance_class(m);
     bind_emitter_locator_class(m);
 }

@@ -4,7 +4,7 @@
  */
 
 /* BINDTOOL_HEADER_FILE(seeker.h) */
-/* BINDTOOL_HEADER_FILE_HASH(7cb3e96925c7dba1f20801c48813703e) */
+/* BINDTOOL_HEADER_FILE_HASH(c5d3bd4c5339c30247dda75c588ef1ef) */
 
 #include "kwargs.h"
 #include <gr-rfseek/seeker.h>
@@ -64,6 +64,11 @@ void bind_arrival_fields(py::class_<gr::rfseek::seeker_config>& c)
        "the fix's split check: where the disagreement T of its data's halves exceeds "
        "this (chi-square, 2 dof; 5.99: the 95 % point), the ellipse grows by "
        "sqrt(T / 2); 0: off");
+    RW(locate_nuisance,
+       "the fix carries what the flight does not know: refitted under wide gust models "
+       "and altimeter readings off by +- locate_altimeter_range_m, its ellipse theirs "
+       "mixed by evidence and calibrated (False: the prior's fit alone)");
+    RW(locate_altimeter_range_m, "altimeter error the fix carries (m, 0..1000)");
     RW(locate_altitude_m,
        "location fit: the vehicle's height above the emitter's ground as its altimeter "
        "holds it (m; NaN: unknown, no height prior)");

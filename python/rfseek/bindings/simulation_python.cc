@@ -4,7 +4,7 @@
  */
 
 /* BINDTOOL_HEADER_FILE(simulation.h) */
-/* BINDTOOL_HEADER_FILE_HASH(c101f784d1edf4c818ba165a3a983a02) */
+/* BINDTOOL_HEADER_FILE_HASH(e356956dd29d1f1daa38d1fc660b88cc) */
 
 #include <gr-rfseek/simulation.h>
 #include <pybind11/numpy.h>
@@ -157,6 +157,13 @@ void bind_run_summary_class(py::module& m)
         .def_readonly("location_in_ellipse",
                       &run_summary::location_in_ellipse,
                       "the truth lies inside the 95 % ellipse")
+        .def_readonly("location_in_ellipse50",
+                      &run_summary::location_in_ellipse50,
+                      "the truth lies inside the 50 % ellipse")
+        .def_readonly("location_unsure",
+                      &run_summary::location_unsure,
+                      "the fix was published unsure (its 95 % ellipse larger than "
+                      "locate_max_axis_m when the loiter's budget ran out)")
         .def_readonly("total_distance_m",
                       &run_summary::total_distance_m,
                       "flown until the run ended (loiter included)");

@@ -11,6 +11,7 @@ import os
 import re
 import subprocess
 import sys
+import tempfile
 
 from gnuradio import gr_unittest
 
@@ -98,6 +99,13 @@ class qa_live(gr_unittest.TestCase):
     def test_bad_arguments(self):
         self.assertEqual(live("--source", "file").returncode, 2)
         self.assertEqual(live("--source", "radio").returncode, 2)
+        # A recording into a folder that does not exist (a typo) is refused, not made.
+        p = live("--source", "sim", "--fast", "--duration", "1", "--record",
+                 os.path.join(tempfile.gettempdir(), "rfseek-no-such-dir", "x"))
+        self.assertEqual(p.returncode, 2, p.stderr)
+        self.assertIn("does not exist", p.stderr)
+        self.assertFalse(os.path.exists(os.path.join(tempfile.gettempdir(),
+                                                     "rfseek-no-such-dir")))
         p = live("--source", "sim", "--fast", "--window-len", "2")
         self.assertEqual(p.returncode, 2)
         self.assertIn("window_len", p.stderr)

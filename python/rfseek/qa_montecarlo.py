@@ -452,6 +452,15 @@ class qa_montecarlo(gr_unittest.TestCase):
             self.assertEqual(len(p.stderr.strip().splitlines()), 1, p.stderr)
             # nothing written: no partial output file
             self.assertEqual([f for f in os.listdir(self.tmp) if f.startswith("bad")], [])
+        # An unknown --set key lists every key --set takes: the scenario's fields and
+        # the seeker's constants alike.
+        from gnuradio import rfseek
+        p, _ = run_mc(self.tmp, "bad", "--set", "bogus=1")
+        self.assertEqual(p.returncode, 2)
+        listed = set(p.stderr.replace(":", ",").replace(".", ",").replace(" ", "")
+                     .split(","))
+        for key in list(rfseek.scenario.keys()) + list(rfseek.seeker_config.keys()):
+            self.assertIn(key, listed)
 
 
 if __name__ == "__main__":

@@ -17,6 +17,7 @@
 #include <limits>
 #include <memory>
 #include <stdexcept>
+#include <string>
 
 namespace gr {
 namespace rfseek {
@@ -331,22 +332,21 @@ void carry_nuisance(const problem& pr,
                     const locator_nuisance& nu,
                     emitter_location& out)
 {
-    const double d_gust = model[0], d_gust_tau = model[1], d_alt = model[2],
-                 d_alt_sigma = model[3];
-    std::vector<std::pair<double, double>> gusts{ { d_gust, d_gust_tau } };
+    const double gust = model[0], gust_tau = model[1], h0 = model[2], sigma_h = model[3];
+    std::vector<std::pair<double, double>> gusts{ { gust, gust_tau } };
     for (double tau : locator_nuisance::GUST_TAUS_S)
         gusts.emplace_back(locator_nuisance::GUST_WIDE_MPS, tau);
-    std::vector<double> heights{ d_alt };
-    const bool prior = d_alt_sigma > 0.0;
+    std::vector<double> heights{ h0 };
+    const bool prior = sigma_h > 0.0;
     if (prior && nu.altimeter_m > 0.0) {
-        heights.push_back(std::max(d_alt - nu.altimeter_m, 5.0));
-        heights.push_back(d_alt + nu.altimeter_m);
+        heights.push_back(std::max(h0 - nu.altimeter_m, 5.0));
+        heights.push_back(h0 + nu.altimeter_m);
     }
     std::vector<model_fit> fits;
     double best = -std::numeric_limits<double>::infinity();
     for (const auto& gu : gusts)
         for (double h : heights) {
-            fits.push_back(fit_model(pr, th0, var, gu.first, gu.second, h, d_alt_sigma));
+            fits.push_back(fit_model(pr, th0, var, gu.first, gu.second, h, sigma_h));
             best = std::max(best, fits.back().log_evidence);
         }
     if (!std::isfinite(best))
@@ -396,18 +396,14 @@ emitter_locator::fit(double vehicle_x_m, double vehicle_y_m, bool nuisance) cons
 
 void emitter_locator::set_nuisance(const locator_nuisance& n)
 {
-    if (!(n.altimeter_m >= 0.0 && n.altimeter_m <= 1000.0))
-        throw std::invalid_argument(
-            "emitter_locator: nuisance altimeter_m must be in [0, 1000] m");
-    if (!(n.scale95 >= 0.1 && n.scale95 <= 10.0))
-        throw std::invalid_argument(
-            "emitter_locator: nuisance scale95 must be in [0.1, 10]");
-    if (!(n.airspeed_mps >= 0.1 && n.airspeed_mps <= 1000.0))
-        throw std::invalid_argument(
-            "emitter_locator: nuisance airspeed_mps must be in [0.1, 1000] m/s");
-    if (!(n.scale50 >= 0.1 && n.scale50 <= 10.0))
-        throw std::invalid_argument(
-            "emitter_locator: nuisance scale50 must be in [0.1, 10]");
+    auto require = [](double v, double lo, double hi, const char* what) {
+        if (!(v >= lo && v <= hi))
+            throw std::invalid_argument(std::string("emitter_locator: nuisance ") + what);
+    };
+    require(n.altimeter_m, 0.0, 1000.0, "altimeter_m must be in [0, 1000] m");
+    require(n.scale95, 0.1, 10.0, "scale95 must be in [0.1, 10]");
+    require(n.scale50, 0.1, 10.0, "scale50 must be in [0.1, 10]");
+    require(n.airspeed_mps, 0.1, 1000.0, "airspeed_mps must be in [0.1, 1000] m/s");
     d_nuisance = n;
 }
 

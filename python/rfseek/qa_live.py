@@ -47,10 +47,13 @@ class qa_live(gr_unittest.TestCase):
         self.assertIn("arrived", p.stderr)
 
     def test_simulated_source_arrival_self(self):
-        # Free-running and paced (20 x real time: commands a few slots late, timing not
+        # Free-running and paced (5 x real time: commands a slot or so late, timing not
         # reproducible): the controller declares arrival, loiters and ends the simulated
-        # flight by itself, near the emitter.
-        p = live("--source", "sim", "--speedup", "20", "--set", "initial_distance_m=800",
+        # flight by itself, near the emitter. At 20 x on a loaded machine a controller
+        # busy for a second of wall time leaves the vehicle 20 s on one heading, and
+        # the orbits that locate the emitter go astray (seen once in CI: capped at
+        # 2400 m without a fix); at 5 x such a stall is 5 s of flight.
+        p = live("--source", "sim", "--speedup", "5", "--set", "initial_distance_m=800",
                  "--set", "start_angle_rad=0", "--set", "start_heading_rad=3.14159",
                  "--strategy", "paper_no_circle", "--arrival", "self", "--duration", "120")
         self.assertEqual(p.returncode, 0, p.stderr)

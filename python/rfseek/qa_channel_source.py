@@ -18,16 +18,19 @@ from gnuradio import blocks, gr, gr_unittest
 from gnuradio import rfseek
 
 
-def console(lines, until=None, timeout=300):
+def console(lines, until=None, timeout=300, stamps=None):
     """Runs a script (its lines) in a fresh interpreter: (exit status, its console
     output, GNU Radio's log included). With `until`, a line goes to the script's stdin
-    once a line of its output holds `until` (the script reads it to end)."""
+    once a line of its output holds `until` (the script reads it to end); `stamps` (a
+    list) then gets (time.monotonic(), line) for each line read before it."""
     p = subprocess.Popen([sys.executable, "-c", "\n".join(lines)], stdin=subprocess.PIPE,
                          stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
     seen = []
     if until is not None:
         for line in p.stdout:  # ends at the script's end too
             seen.append(line)
+            if stamps is not None:
+                stamps.append((time.monotonic(), line))
             if until in line:
                 break
         p.stdin.write("stop\n")
@@ -267,9 +270,11 @@ class qa_channel_source(gr_unittest.TestCase):
     def test_lockstep_without_a_controller_says_what_it_waits_for(self):
         # The first flowgraph a user builds: source -> estimator -> message_debug with
         # the defaults (lockstep). The world waits for a cmd that never comes; it must
-        # say so, once, and what would end the wait (after 1.5 s of waiting). In a
+        # say so, once, and what would end the wait, within 2 s of the start (it is due
+        # after 1.5 s of waiting; the bound allows a loaded machine 1 s more). In a
         # process of its own (GNU Radio's logger writes to that process's console),
         # stopped once the warning has come.
+        stamps = []
         rc, out = console([
             "import select, sys",
             "from gnuradio import blocks, gr, rfseek",
@@ -281,11 +286,17 @@ class qa_channel_source(gr_unittest.TestCase):
             "tb.connect(src, est)",
             "tb.msg_connect(est, 'meas', dbg, 'store')",
             "tb.start()",
+            "print('started', flush=True)",
             "select.select([sys.stdin], [], [], 120.0)",
             "print('measurements', dbg.num_messages(), flush=True)",
             "tb.stop()",
-            "tb.wait()"], until="waits for a cmd")
+            "tb.wait()"], until="waits for a cmd", stamps=stamps)
         self.assertEqual(rc, 0, out)
+        started = [t for t, line in stamps if line.startswith("started")]
+        self.assertEqual(len(started), 1, out)
+        waited = stamps[-1][0] - started[0]
+        self.assertGreater(waited, 1.0, out)  # it waited before warning
+        self.assertLess(waited, 3.0, out)
         warnings = [l for l in out.splitlines() if "waits for a cmd" in l]
         self.assertEqual(len(warnings), 1, out)
         self.assertIn("lockstep=False", warnings[0])

@@ -8,7 +8,9 @@ holds what a flight needs (at most 12 parameters); no two parameters of a block 
 label; every option has its own label; every numeric parameter is checked by an assert;
 and, through GRC's own platform loading the source blocks, every block is valid at its
 defaults while a value out of range fails an assert that names that parameter (a
-negative controller speed fails on the speed alone)."""
+negative controller speed fails on the speed alone). The example flowgraphs type each
+physical quantity (airspeed, carrier, slot period, sample rate) once: blocks that share
+one take the same variable."""
 
 import glob
 import os
@@ -22,6 +24,14 @@ SOURCE = os.environ.get("RFSEEK_SOURCE_DIR",
                         os.path.join(os.path.dirname(__file__), "..", ".."))
 GRC = os.path.abspath(os.path.join(SOURCE, "grc"))
 NUMERIC = ("real", "int", "float")
+# The parameters of rfseek blocks that are one physical quantity of a flight; "0" (the
+# link's "use the controller's") is not a value.
+QUANTITIES = {
+    "airspeed": ("speed", "airspeed_mps", "turn_speed_mps"),
+    "carrier": ("carrier", "center_freq"),
+    "slot period": ("slot_period",),
+    "sample rate": ("samp_rate",),
+}
 
 
 def load_blocks():
@@ -72,6 +82,30 @@ class qa_grc_blocks(unittest.TestCase):
             self.assertEqual(unchecked, [], bid)
             for a in asserts:
                 self.assertTrue(ids & set(re.findall(r"[A-Za-z_]\w*", a)), (bid, a))
+
+    def test_examples_type_each_quantity_once(self):
+        examples = sorted(glob.glob(os.path.join(SOURCE, "examples", "*.grc")))
+        self.assertGreaterEqual(len(examples), 9)
+        shared = 0
+        for path in examples:
+            with open(path) as f:
+                fg = yaml.safe_load(f)
+            for quantity, keys in QUANTITIES.items():
+                uses = [(b["name"], str(b["parameters"][k])) for b in fg["blocks"]
+                        if b["id"].startswith("rfseek_") for k in keys
+                        if k in b["parameters"] and str(b["parameters"][k]) != "0"]
+                if len(uses) < 2:
+                    continue
+                shared += 1
+                values = {v for _, v in uses}
+                name = os.path.basename(path)
+                self.assertEqual(len(values), 1, "%s: %s set apart: %s"
+                                 % (name, quantity, uses))
+                value = values.pop()
+                self.assertIsNone(re.fullmatch(r"[-+0-9.eE]+", value),
+                                  "%s: %s typed as a literal in %d blocks"
+                                  % (name, quantity, len(uses)))
+        self.assertGreater(shared, 10)  # the examples do share quantities
 
     def test_grc_validates_defaults_and_names_bad_values(self):
         from gnuradio.grc.core.platform import Platform

@@ -318,10 +318,12 @@ void seeking_controller_impl::process(measurement m)
         cmd = pmt::dict_add(cmd, pmt::mp("status"), pmt::from_long(c.status));
         cmd = pmt::dict_add(cmd, pmt::mp("done"), pmt::from_bool(c.done));
     }
-    message_port_pub(d_port_cmd, cmd);
+    // The status and the telemetry go out before the cmd: a cmd that says `done` ends
+    // a simulated flight (channel_source stops), and what is published after it can be
+    // lost with the flowgraph's end (the last "located" was, under a slow sanitizer).
     publish_status(c, m.time_s);
-
     publish_telemetry(c, m, from_nav, nav);
+    message_port_pub(d_port_cmd, cmd);
 }
 
 void seeking_controller_impl::publish_telemetry(const command& c,

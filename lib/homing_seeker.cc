@@ -150,6 +150,13 @@ private:
                d_cfg.locate_altitude_m >= MIN_FAR_CHECK_ALTITUDE_M;
     }
 
+    // The first orbit's Doppler amplitude (Hz) from which the emitter is far
+    // (seeker_config::far_amplitude: raised for wide orbits).
+    double far_amplitude_hz() const
+    {
+        return d_cfg.far_amplitude() * d_cfg.max_doppler_hz();
+    }
+
     // A fit whose height contradicts the altimeter (beyond HEIGHT_SIGMAS x its stated
     // accuracy) is not trusted: an orbit far from the emitter swings its Doppler by
     // about f_d,max, which a near emitter only explains with the height run down to
@@ -335,8 +342,7 @@ private:
             publish_fix(d_pending, c);
             d_pending = emitter_location();
         } else if (!d_done && loitered >= d_next_fit_s && !d_centred && far_check() &&
-                   d_first_orbit.amplitude() >=
-                       d_cfg.arrival_far_amplitude * d_cfg.max_doppler_hz()) {
+                   d_first_orbit.amplitude() >= far_amplitude_hz()) {
             // The first orbit's Doppler swings as far from the emitter: a false
             // overflight (a gust, a turn). Seek on at once.
             return resume_seeking(m);

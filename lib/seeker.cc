@@ -55,6 +55,27 @@ double seeker_config::effective_outlier_threshold_hz() const
     return outlier_threshold_hz > 0.0 ? outlier_threshold_hz : 2.0 * max_doppler_hz();
 }
 
+double seeker_config::far_amplitude() const
+{
+    // The first harmonic of the Doppler over one orbit of radius R whose centre lies
+    // D = 4 R from the emitter, h below (what doppler_amplitude fits), in units of
+    // f_d,max: the range rate v u.e_v over the orbit, u the unit line of sight.
+    const double R = loiter_radius_m, D = 4.0 * R;
+    const double h = std::isfinite(locate_altitude_m) ? std::abs(locate_altitude_m) : 0.0;
+    constexpr int N = 360;
+    double a = 0.0, b = 0.0;
+    for (int k = 0; k < N; ++k) {
+        const double psi = 2.0 * M_PI * k / N;
+        const double rx = D - R * std::cos(psi), ry = -R * std::sin(psi);
+        const double r = std::sqrt(rx * rx + ry * ry + h * h);
+        const double f = (-std::sin(psi) * rx + std::cos(psi) * ry) / r;
+        a += f * std::cos(psi);
+        b += f * std::sin(psi);
+    }
+    const double geometric = 2.0 * std::hypot(a, b) / N;
+    return std::max(arrival_far_amplitude, std::isfinite(geometric) ? geometric : 0.0);
+}
+
 namespace {
 
 // The adaptive strategy's and the ground-track guidance's constants.

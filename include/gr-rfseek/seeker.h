@@ -185,6 +185,14 @@ struct RFSEEK_API seeker_config {
 
     double max_doppler_hz() const;
     double effective_outlier_threshold_hz() const;
+    /*!
+     * The first orbit's Doppler amplitude, in units of f_d,max, from which the emitter
+     * is far (a false overflight): arrival_far_amplitude, or what an emitter 4 orbit
+     * radii from the orbit's centre swings at locate_altitude_m if that is more (a wide
+     * orbit begun late, a plane's, swings 0.92 with the emitter just outside it). At
+     * the defaults (25 m orbit, 50 m up or more) it is arrival_far_amplitude.
+     */
+    double far_amplitude() const;
 
     //! Names settable by set() (the fields, plus *_deg aliases of the angles in degrees).
     static std::vector<std::string> keys();

@@ -224,7 +224,7 @@ TEST(overflight_detector, ignores_unusable_measurements_and_validates)
 namespace {
 
 /*
- * doppler_amplitude on one air-frame orbit (radius 25 m, 15.7 s, to the left) with the
+ * doppler_amplitude on one air-frame orbit (radius R, 25 m: 15.7 s, to the left) with the
  * emitter at horizontal distance d from the orbit's centre, height h, a CFO with drift
  * and a constant wind (the orbit drifts with it): the exact Doppler
  * (v + w) . u / lambda, u the unit line of sight. Far away every path has the bearing of
@@ -232,9 +232,10 @@ namespace {
  * centred on the emitter has its velocity across the line of sight: amplitude 0 but for
  * the wind's drift.
  */
-double orbit_amplitude(double d, double h, double wind, double outliers = 0.0)
+double
+orbit_amplitude(double d, double h, double wind, double outliers = 0.0, double R = 25.0)
 {
-    const double R = 25.0, w = V / R;
+    const double w = V / R;
     rng g(77);
     doppler_amplitude amp;
     for (int k = 0; k * T < 2.0 * M_PI / w; ++k) {
@@ -269,6 +270,35 @@ TEST(doppler_amplitude, is_f_d_max_far_away_and_collapses_over_the_emitter)
     }
     // 10 % outliers of +-400 Hz are rejected.
     EXPECT_NEAR(orbit_amplitude(5000.0, 100.0, 0.0, 0.1), A, 0.02 * A);
+}
+
+TEST(homing_seeker, a_wide_orbit_by_the_emitter_is_not_taken_for_a_far_one)
+{
+    // The far check's threshold (seeker_config::far_amplitude). At the defaults (25 m
+    // orbit) it is arrival_far_amplitude whatever the height from 50 m up, and the
+    // synthetic orbit 100 m off stays under it. A plane's orbit (150 m, 100 m up),
+    // begun late after its overflight and centred 400 m from the emitter (the emitter
+    // 250 m outside it), swings over 0.9 f_d,max: the threshold rises above that swing
+    // for such an orbit, and stays below what the same orbit 3 km off swings.
+    seeker_config c;
+    for (double h : { 50.0, 100.0, 150.0 }) {
+        c.locate_altitude_m = h;
+        EXPECT_EQ(c.far_amplitude(), c.arrival_far_amplitude) << h;
+    }
+    c.locate_altitude_m = 100.0;
+    EXPECT_LT(orbit_amplitude(100.0, 100.0, 0.0), c.far_amplitude() * A);
+    c.loiter_radius_m = 150.0;
+    const double near = orbit_amplitude(400.0, 100.0, 0.0, 0.0, 150.0);
+    const double far = orbit_amplitude(3000.0, 100.0, 0.0, 0.0, 150.0);
+    EXPECT_GT(near, c.arrival_far_amplitude * A); // the old threshold took it as far
+    EXPECT_LT(near, c.far_amplitude() * A);
+    EXPECT_GT(far, c.far_amplitude() * A);
+    // The threshold's first harmonic against the synthetic orbit's, 4 R (600 m) off:
+    // doppler_amplitude's robust fit reads the not quite sinusoidal swing 2 % lower.
+    EXPECT_NEAR(
+        orbit_amplitude(600.0, 100.0, 0.0, 0.0, 150.0), c.far_amplitude() * A, 0.03 * A);
+    c.arrival_far_amplitude = 0.99; // a user's stricter threshold is kept
+    EXPECT_EQ(c.far_amplitude(), 0.99);
 }
 
 TEST(doppler_amplitude, needs_a_whole_turn)

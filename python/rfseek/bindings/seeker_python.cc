@@ -4,7 +4,7 @@
  */
 
 /* BINDTOOL_HEADER_FILE(seeker.h) */
-/* BINDTOOL_HEADER_FILE_HASH(c5d3bd4c5339c30247dda75c588ef1ef) */
+/* BINDTOOL_HEADER_FILE_HASH(3ee12adff4c014d705379012dcdb49af) */
 
 #include "kwargs.h"
 #include <gr-rfseek/seeker.h>
@@ -42,7 +42,7 @@ void bind_arrival_fields(py::class_<gr::rfseek::seeker_config>& c)
        "below this x f_d,max (0: off)");
     RW(arrival_far_amplitude,
        "a loiter whose first orbit shows a Doppler amplitude of at least this x "
-       "f_d,max is a false overflight: seek on at once (0: off)");
+       "f_d,max is a false overflight: seek on at once (0: off; see far_amplitude)");
     RW(arrival_confirm_m,
        "arrival is declared when a location fit falls within this distance of the "
        "estimate orbited, by the vehicle (m; 0: on the overflight alone)");
@@ -195,7 +195,10 @@ void bind_seeker_config(py::module& m)
                                "f_d,max = speed_mps * carrier_hz / c (Hz).")
         .def_property_readonly("effective_outlier_threshold_hz",
                                &seeker_config::effective_outlier_threshold_hz,
-                               "outlier_threshold_hz, or 2 f_d,max when it is 0.");
+                               "outlier_threshold_hz, or 2 f_d,max when it is 0.")
+        .def_property_readonly("far_amplitude",
+                               &seeker_config::far_amplitude,
+                               "Swing (x f_d,max) of a first orbit far away.");
 }
 
 } // namespace

@@ -188,9 +188,10 @@ struct RFSEEK_API seeker_config {
     /*!
      * The first orbit's Doppler amplitude, in units of f_d,max, from which the emitter
      * is far (a false overflight): arrival_far_amplitude, or what an emitter 4 orbit
-     * radii from the orbit's centre swings at locate_altitude_m if that is more (a wide
-     * orbit begun late, a plane's, swings 0.92 with the emitter just outside it). At
-     * the defaults (25 m orbit, 50 m up or more) it is arrival_far_amplitude.
+     * radii from the orbit's centre swings at locate_altitude_m if that is more (a
+     * plane's 150 m orbit at 100 m: 0.978; begun late, it can swing over 0.9 with the
+     * emitter a few hundred metres outside it). At the defaults (25 m orbit, 50 m up or
+     * more) it is arrival_far_amplitude.
      */
     double far_amplitude() const;
 

@@ -4,7 +4,7 @@
  */
 
 /* BINDTOOL_HEADER_FILE(seeker.h) */
-/* BINDTOOL_HEADER_FILE_HASH(3ee12adff4c014d705379012dcdb49af) */
+/* BINDTOOL_HEADER_FILE_HASH(c67d72a8869305992a22850290c36877) */
 
 #include "kwargs.h"
 #include <gr-rfseek/seeker.h>

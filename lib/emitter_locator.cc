@@ -301,9 +301,11 @@ model_fit fit_model(const problem& pr,
 // --calibrate --runs 40 --seed 4000001 (27 cells x 40 runs, seeds no table uses;
 // docs/seeker.md, "How honest the ellipse is"): per bin, the factors that put the 94th
 // and the 50th percentile of the fixes' errors, in the metric of the mixture's
-// covariance, on the 95 % and 50 % contours. Gusty or strong air leaves a few fixes far
-// off (the gusts' drift, which the Doppler of one orbit cannot tell from a moved
-// emitter): the 95 % factor grows far more than the 50 %.
+// covariance, on the 95 % and 50 % contours. The 50 % factors were recalibrated with
+// the arrival that needs the honest ellipse (docs/notes/seeker.md, "Arrival and the
+// honest ellipse"); the 95 % factors are the first calibration's. Gusty or strong air
+// leaves a few fixes far off (the gusts' drift, which the Doppler of one orbit cannot
+// tell from a moved emitter): the 95 % factor grows far more than the 50 %.
 struct radius_factors {
     double k95, k50;
 };
@@ -313,14 +315,24 @@ radius_factors ellipse_scale(double gust_rms_mps, double wind_fraction)
     static constexpr double wind_edge = 0.52;
     static constexpr double f95[2][4] = { { 0.81, 1.57, 2.16, 12.49 },
                                           { 3.35, 3.65, 6.07, 39.04 } };
-    static constexpr double f50[2][4] = { { 0.79, 0.91, 1.0, 1.13 },
-                                          { 1.08, 1.31, 1.99, 1.99 } };
+    static constexpr double f50[2][4] = { { 0.75, 0.91, 1.36, 5.09 },
+                                          { 1.08, 1.87, 5.27, 5.27 } };
     const std::size_t i = static_cast<std::size_t>(
         std::upper_bound(gust_edge.begin(), gust_edge.end(), gust_rms_mps) -
         gust_edge.begin());
     const std::size_t j = wind_fraction >= wind_edge ? 1 : 0;
     return { f95[j][i], f50[j][i] };
 }
+
+} // namespace
+
+std::array<double, 2> locator_nuisance::factors(double gust_rms_mps, double wind_fraction)
+{
+    const radius_factors k = ellipse_scale(gust_rms_mps, wind_fraction);
+    return { k.k95, k.k50 };
+}
+
+namespace {
 
 // The fix under every nuisance model (locator_nuisance), weighted by evidence: the mean
 // and the covariance of the mixture replace out's fix and ellipses. The first model is

@@ -160,12 +160,21 @@ private:
     // A fit whose height contradicts the altimeter (beyond HEIGHT_SIGMAS x its stated
     // accuracy) is not trusted: an orbit far from the emitter swings its Doppler by
     // about f_d,max, which a near emitter only explains with the height run down to
-    // a few metres. Without a height prior every fit passes.
+    // a few metres. Below the altimeter, only a height that low is refused: under
+    // twice the height h at which an orbit centred on the emitter swings as far as
+    // the far check's amplitude a, R sqrt(1 / a^2 - 1) (12 m for the default 25 m
+    // orbit). Strong fast gusts, which the gust prior underrates, pull a fit over the
+    // emitter down to 25-50 m from 100 m. Without a height prior every fit passes.
     bool height_agrees(const emitter_location& l) const
     {
         const double s = d_cfg.locate_altitude_sigma_m;
-        return !(s > 0.0 && std::isfinite(d_cfg.locate_altitude_m)) ||
-               std::abs(l.altitude_m - d_cfg.locate_altitude_m) <= HEIGHT_SIGMAS * s;
+        const double h0 = d_cfg.locate_altitude_m;
+        if (!(s > 0.0 && std::isfinite(h0)))
+            return true;
+        const double a = std::min(far_amplitude_hz() / d_cfg.max_doppler_hz(), 0.999);
+        const double swing_h = d_cfg.loiter_radius_m * std::sqrt(1.0 / (a * a) - 1.0);
+        const double floor = std::min(h0 - HEIGHT_SIGMAS * s, 2.0 * swing_h);
+        return l.altitude_m >= floor && l.altitude_m <= h0 + HEIGHT_SIGMAS * s;
     }
 
     // Back to seeking: the strategy resumes where it was; the detector starts anew.
@@ -257,6 +266,14 @@ private:
         }
         if (d_cfg.locate_split_gate > 0.0)
             d_locator.check_split(l, d_cfg.locate_split_gate);
+        // Arrived only where the honest ellipse places the emitter in the locator's
+        // search area: a false overflight kilometres away can give tight fits by the
+        // vehicle under the gust prior, not under the wider gust models.
+        if (d_status == 0 && !(l.major_m <= SEARCH_RADIUS_M)) {
+            if (d_retargets++ < MAX_RETARGETS) // more orbits may narrow it
+                extend_deadline(loitered, 0.0);
+            return;
+        }
         const bool fix = l.major_m <= d_cfg.locate_max_axis_m;
         if (!d_candidate.valid) // the first: the least drift in its data
             d_candidate = l;

@@ -201,9 +201,12 @@ def _calibration_run(job):
     ca, sa = math.cos(loc.major_angle_rad), math.sin(loc.major_angle_rad)
     u = (ex * ca + ey * sa) / loc.major_m
     v = (-ex * sa + ey * ca) / loc.minor_m
-    # In units of the unscaled 95 % contour: u^2 + v^2 <= 1 inside.
-    return {"cell": name, "nees95": u * u + v * v, "gust_rms": loc.gust_rms_mps,
-            "wind": math.hypot(loc.wind_east_mps, loc.wind_north_mps) / sc.speed_mps,
+    # In units of the 95 % contour without the calibrated factors (divided out; the
+    # user's scale95 is 1 here): u^2 + v^2 <= 1 inside.
+    wind = math.hypot(loc.wind_east_mps, loc.wind_north_mps) / sc.speed_mps
+    k95 = rfseek.locator_nuisance.factors(loc.gust_rms_mps, wind)[0]
+    return {"cell": name, "nees95": (u * u + v * v) * k95 * k95,
+            "gust_rms": loc.gust_rms_mps, "wind": wind,
             "major": loc.major_m, "minor": loc.minor_m, "T": loc.consistency,
             "spread": loc.model_spread_m, "rms": loc.rms_hz, "alt": loc.altitude_m,
             "range": math.hypot(loc.east_m, loc.north_m), "seed": seed,

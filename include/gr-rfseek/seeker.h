@@ -146,7 +146,9 @@ struct RFSEEK_API seeker_config {
     //! gain, in (0, 1]; 1: the read itself (an autopilot's already filtered heading).
     double loiter_heading_gain = 0.3;
     //! Arrival is declared when a location fit falls within this distance of the
-    //! estimate the vehicle orbits (m); 0: declared on the overflight alone.
+    //! estimate the vehicle orbits (m), lies by the vehicle and, with
+    //! locate_nuisance, its honest 95 % ellipse is under 600 m; 0: declared on the
+    //! overflight alone.
     double arrival_confirm_m = 30.0;
     //! Orbits of data before the first location fit (then every quarter orbit).
     double locate_orbits = 1.0;

@@ -18,6 +18,7 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <utility>
 #include <vector>
 
 using namespace gr::rfseek;
@@ -620,6 +621,76 @@ TEST(homing_seeker, a_fit_whose_height_contradicts_the_altimeter_is_not_trusted)
     EXPECT_FALSE(r.summary.false_arrival);
     EXPECT_LT(r.summary.arrival_detect_distance_m, 300.0);
     EXPECT_TRUE(r.summary.success);
+}
+
+// The first loiter of a run: its first slot, and the time it ended (or the run's end).
+static std::pair<const slot_record*, double> first_loiter(const run_result& r)
+{
+    const slot_record* start = nullptr;
+    for (const slot_record& q : r.records) {
+        if (!start && q.stage == 3)
+            start = &q;
+        else if (start && q.stage != 3)
+            return { start, q.time_s };
+    }
+    return { start, r.records.empty() ? 0.0 : r.records.back().time_s };
+}
+
+TEST(homing_seeker, fits_over_the_emitter_pulled_low_by_fast_gusts_are_trusted)
+{
+    // realistic with 2.5 m/s gusts of 2 s, seed 5000033: the first loiter starts 37 m
+    // from the emitter and its fits lie within 30 m of it, but fast gusts (which the
+    // gust prior underrates) pull their height to 35 m from the altimeter's 100 +- 20.
+    // Refused by the altimeter's band alone, that loiter found no fix and the run never
+    // declared. Only a height as low as a far orbit's swing implies (under 24 m here)
+    // is refused now: arrival and a fix in that first loiter, by the emitter.
+    scenario sc;
+    sc.apply_preset("realistic");
+    sc.wind_gust_mps = 2.5;
+    sc.wind_gust_tau_s = 2.0;
+    sc.seed = 5000033;
+    sc.self_arrival = true;
+    const seeker_config cfg = simulation::seeker_for(sc, "adaptive");
+    const run_result r = simulation(sc, cfg).run(true);
+    const auto [loiter, loiter_end] = first_loiter(r);
+    ASSERT_TRUE(loiter);
+    EXPECT_LT(loiter->distance_m, 100.0);
+    ASSERT_TRUE(r.summary.declared);
+    EXPECT_FALSE(r.summary.false_arrival);
+    EXPECT_LE(r.summary.arrival_time_s, loiter_end);
+    ASSERT_TRUE(r.summary.located);
+    EXPECT_LT(r.summary.location_error_m, 30.0);
+    EXPECT_TRUE(r.summary.location_in_ellipse);
+}
+
+TEST(homing_seeker, arrives_only_where_the_honest_ellipse_places_the_emitter)
+{
+    // windy, seed 5000068: a gust sets the detector off 2.7 km from the emitter and
+    // the fits under the gust prior alone agree on an emitter under the orbit, with a
+    // 30 m ellipse. Without the honest ellipse (locate_nuisance off) the run declares
+    // arrival there, 2.7 km off, and publishes that small wrong ellipse. With it the
+    // wider gust models leave the emitter kilometres unknown, the loiter does not
+    // arrive, and the vehicle seeks on to the emitter.
+    scenario sc;
+    sc.apply_preset("windy");
+    sc.seed = 5000068;
+    sc.self_arrival = true;
+    seeker_config cfg = simulation::seeker_for(sc, "adaptive");
+    ASSERT_TRUE(cfg.locate_nuisance);
+    const run_result honest = simulation(sc, cfg).run(true);
+    const auto [loiter, loiter_end] = first_loiter(honest);
+    ASSERT_TRUE(loiter);
+    EXPECT_GT(loiter->distance_m, 1000.0); // the false overflight happened
+    EXPECT_GT(honest.summary.arrival_time_s, loiter_end);
+    EXPECT_FALSE(honest.summary.false_arrival);
+    ASSERT_TRUE(honest.summary.declared);
+    EXPECT_LT(honest.summary.arrival_detect_distance_m, 300.0);
+    EXPECT_TRUE(honest.summary.location_in_ellipse);
+    cfg.locate_nuisance = false;
+    const run_summary prior = simulation(sc, cfg).run().summary;
+    EXPECT_TRUE(prior.false_arrival);
+    EXPECT_GT(prior.location_error_m, 1000.0);
+    EXPECT_FALSE(prior.location_in_ellipse);
 }
 
 TEST(homing_seeker, without_a_confirmed_fit_seeks_again_or_gives_up)

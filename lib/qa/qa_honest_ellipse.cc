@@ -15,6 +15,7 @@
 #include <gr-rfseek/rng.h>
 #include <gtest/gtest.h>
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <stdexcept>
@@ -170,4 +171,30 @@ TEST(honest_ellipse, bad_nuisance_settings_are_refused_by_name)
     n.scale50 = 20.0;
     EXPECT_THROW(loc.set_nuisance(n), std::invalid_argument);
     EXPECT_DOUBLE_EQ(loc.nuisance().altimeter_m, 30.0); // unchanged by the refusals
+}
+
+TEST(honest_ellipse, the_calibrated_factors_never_shrink_in_stronger_air)
+{
+    // The radius factors are steps calibrated per bin of the gust level and the wind
+    // the fit found: never smaller in stronger gusts or wind, and the 50 % contour
+    // (radius k50 sqrt(chi2_50)) always inside the 95 % one (k95 sqrt(chi2_95)).
+    const double chi95 = 5.991464547107979, chi50 = 1.3862943611198906;
+    std::array<double, 2> prev_wind[40];
+    for (int w = 0; w <= 10; ++w) {
+        const double wind = 0.1 * w;
+        std::array<double, 2> prev{ { 0.0, 0.0 } };
+        for (int g = 0; g < 40; ++g) {
+            const std::array<double, 2> k = locator_nuisance::factors(0.05 * g, wind);
+            EXPECT_GT(k[0], 0.0);
+            EXPECT_GT(k[1], 0.0);
+            EXPECT_GE(k[0], prev[0]) << "gust " << 0.05 * g << " wind " << wind;
+            EXPECT_GE(k[1], prev[1]) << "gust " << 0.05 * g << " wind " << wind;
+            if (w > 0) {
+                EXPECT_GE(k[0], prev_wind[g][0]);
+                EXPECT_GE(k[1], prev_wind[g][1]);
+            }
+            EXPECT_LT(k[1] * std::sqrt(chi50), k[0] * std::sqrt(chi95));
+            prev = prev_wind[g] = k;
+        }
+    }
 }

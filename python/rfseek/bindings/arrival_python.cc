@@ -4,7 +4,7 @@
  */
 
 /* BINDTOOL_HEADER_FILE(arrival.h) */
-/* BINDTOOL_HEADER_FILE_HASH(3bdb635fb987ec03e44fb8c5c388c3fe) */
+/* BINDTOOL_HEADER_FILE_HASH(7589e404e759220061fa6d78513f2fa0) */
 
 #include <gr-rfseek/arrival.h>
 #include <pybind11/pybind11.h>
@@ -263,7 +263,14 @@ void bind_locator_nuisance_class(py::module& m)
                        "the user's radius factor of the 95 % ellipse (0.1..10)")
         .def_readwrite("scale50",
                        &locator_nuisance::scale50,
-                       "the user's radius factor of the 50 % ellipse (0.1..10)");
+                       "the user's radius factor of the 50 % ellipse (0.1..10)")
+        .def_static("factors",
+                    &locator_nuisance::factors,
+                    py::arg("gust_rms_mps"),
+                    py::arg("wind_fraction"),
+                    "The calibrated radius factors (95 %, 50 %) of a fix whose fit "
+                    "found this gust level (emitter_location.gust_rms_mps) and mean "
+                    "wind over the airspeed.");
 }
 
 void bind_emitter_locator_class(py::module& m)

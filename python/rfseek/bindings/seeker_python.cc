@@ -4,7 +4,7 @@
  */
 
 /* BINDTOOL_HEADER_FILE(seeker.h) */
-/* BINDTOOL_HEADER_FILE_HASH(c67d72a8869305992a22850290c36877) */
+/* BINDTOOL_HEADER_FILE_HASH(dc667bf9904b394cf4239d33d7d3f9aa) */
 
 #include "kwargs.h"
 #include <gr-rfseek/seeker.h>
@@ -45,7 +45,8 @@ void bind_arrival_fields(py::class_<gr::rfseek::seeker_config>& c)
        "f_d,max is a false overflight: seek on at once (0: off; see far_amplitude)");
     RW(arrival_confirm_m,
        "arrival is declared when a location fit falls within this distance of the "
-       "estimate orbited, by the vehicle (m; 0: on the overflight alone)");
+       "estimate orbited, by the vehicle, and (locate_nuisance) its honest 95 % "
+       "ellipse is under 600 m (m; 0: on the overflight alone)");
     RW(loiter_radius_m, "loiter orbit radius (m), flown to the left");
     RW(loiter_heading_gain,
        "gain in (0, 1] of the alpha-beta filter that smooths the heading read for the "

@@ -171,7 +171,7 @@ private:
         const double h0 = d_cfg.locate_altitude_m;
         if (!(s > 0.0 && std::isfinite(h0)))
             return true;
-        const double a = std::min(far_amplitude_hz() / d_cfg.max_doppler_hz(), 0.999);
+        const double a = std::clamp(d_cfg.far_amplitude(), 0.1, 0.999);
         const double swing_h = d_cfg.loiter_radius_m * std::sqrt(1.0 / (a * a) - 1.0);
         const double floor = std::min(h0 - HEIGHT_SIGMAS * s, 2.0 * swing_h);
         return l.altitude_m >= floor && l.altitude_m <= h0 + HEIGHT_SIGMAS * s;
@@ -259,17 +259,20 @@ private:
     // orbits around this estimate.
     void confirmed(emitter_location l, double loitered, command& c)
     {
+        bool honest = false;
         if (d_cfg.locate_nuisance) {
             const emitter_location h = d_locator.fit(d_x, d_y, true);
-            if (h.valid)
+            if (h.valid) {
                 l = h;
+                honest = true;
+            }
         }
         if (d_cfg.locate_split_gate > 0.0)
             d_locator.check_split(l, d_cfg.locate_split_gate);
-        // Arrived only where the honest ellipse places the emitter in the locator's
-        // search area: a false overflight kilometres away can give tight fits by the
-        // vehicle under the gust prior, not under the wider gust models.
-        if (d_status == 0 && !(l.major_m <= SEARCH_RADIUS_M)) {
+        // Arrived only where the honest 95 % ellipse's semi-major axis is within the
+        // locator's search area: a false overflight kilometres away can give tight
+        // fits by the vehicle under the gust prior, not under the wider gust models.
+        if (honest && d_status == 0 && !(l.major_m <= SEARCH_RADIUS_M)) {
             if (d_retargets++ < MAX_RETARGETS) // more orbits may narrow it
                 extend_deadline(loitered, 0.0);
             return;

@@ -226,7 +226,8 @@ struct RFSEEK_API locator_nuisance {
     static constexpr double GUST_WIDE_MPS = 3.0;
     static constexpr std::array<double, 2> GUST_TAUS_S{ { 15.0, 60.0 } };
     //! The calibrated radius factors {95 %, 50 %} of a fix whose fit found this gust
-    //! level (emitter_location::gust_rms_mps) and mean wind over the airspeed.
+    //! level (emitter_location::gust_rms_mps) and mean wind |w| / airspeed_mps;
+    //! applied when calibrated, before the user's scale95 and scale50.
     static std::array<double, 2> factors(double gust_rms_mps, double wind_fraction);
 };
 

@@ -147,8 +147,8 @@ struct RFSEEK_API seeker_config {
     double loiter_heading_gain = 0.3;
     //! Arrival is declared when a location fit falls within this distance of the
     //! estimate the vehicle orbits (m), lies by the vehicle and, with
-    //! locate_nuisance, its honest 95 % ellipse is under 600 m; 0: declared on the
-    //! overflight alone.
+    //! locate_nuisance, its honest 95 % semi-major axis is at most 600 m; 0: declared on
+    //! the overflight alone.
     double arrival_confirm_m = 30.0;
     //! Orbits of data before the first location fit (then every quarter orbit).
     double locate_orbits = 1.0;
@@ -178,9 +178,11 @@ struct RFSEEK_API seeker_config {
     //! The vehicle's height above the ground the emitter stands on, as its altimeter /
     //! autopilot holds it (m; NaN: unknown): the location fit's prior on the height,
     //! with std locate_altitude_sigma_m, the altimeter's stated accuracy (m; 0: the
-    //! height is fitted freely). A fit whose height is more than 2.5 x that from
-    //! locate_altitude_m is not used (a far orbit read as a near, low emitter); with 0
-    //! or no altitude that check is off too. The simulation gives it the scenario's
+    //! height is fitted freely). A fit whose height is more than 2.5 x that above
+    //! locate_altitude_m, or below both the band and twice the height at which an
+    //! orbit centred on the emitter swings as far as far_amplitude(), is not used (a
+    //! far orbit read as a near, low emitter); with 0 or no altitude that check is off
+    //! too. The simulation gives it the scenario's
     //! altitude_m plus its altimeter_error_m.
     double locate_altitude_m = std::numeric_limits<double>::quiet_NaN();
     double locate_altitude_sigma_m = 20.0;

@@ -681,9 +681,9 @@ TEST(homing_seeker, arrives_only_where_the_honest_ellipse_places_the_emitter)
     const auto [loiter, loiter_end] = first_loiter(honest);
     ASSERT_TRUE(loiter);
     EXPECT_GT(loiter->distance_m, 1000.0); // the false overflight happened
+    ASSERT_TRUE(honest.summary.declared);
     EXPECT_GT(honest.summary.arrival_time_s, loiter_end);
     EXPECT_FALSE(honest.summary.false_arrival);
-    ASSERT_TRUE(honest.summary.declared);
     EXPECT_LT(honest.summary.arrival_detect_distance_m, 300.0);
     EXPECT_TRUE(honest.summary.location_in_ellipse);
     cfg.locate_nuisance = false;

@@ -4,7 +4,7 @@
  */
 
 /* BINDTOOL_HEADER_FILE(arrival.h) */
-/* BINDTOOL_HEADER_FILE_HASH(7589e404e759220061fa6d78513f2fa0) */
+/* BINDTOOL_HEADER_FILE_HASH(5012a74006211316aca610d16f72b0ad) */
 
 #include <gr-rfseek/arrival.h>
 #include <pybind11/pybind11.h>
@@ -268,9 +268,10 @@ void bind_locator_nuisance_class(py::module& m)
                     &locator_nuisance::factors,
                     py::arg("gust_rms_mps"),
                     py::arg("wind_fraction"),
-                    "The calibrated radius factors (95 %, 50 %) of a fix whose fit "
+                    "The calibrated radius factors [k95, k50] of a fix whose fit "
                     "found this gust level (emitter_location.gust_rms_mps) and mean "
-                    "wind over the airspeed.");
+                    "wind |wind| / airspeed_mps; applied when calibrated is True, "
+                    "before the user's scale95 and scale50.");
 }
 
 void bind_emitter_locator_class(py::module& m)

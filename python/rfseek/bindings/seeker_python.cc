@@ -4,7 +4,7 @@
  */
 
 /* BINDTOOL_HEADER_FILE(seeker.h) */
-/* BINDTOOL_HEADER_FILE_HASH(dc667bf9904b394cf4239d33d7d3f9aa) */
+/* BINDTOOL_HEADER_FILE_HASH(2213a1e512660961f4fdb1fedfd1b718) */
 
 #include "kwargs.h"
 #include <gr-rfseek/seeker.h>
@@ -46,7 +46,7 @@ void bind_arrival_fields(py::class_<gr::rfseek::seeker_config>& c)
     RW(arrival_confirm_m,
        "arrival is declared when a location fit falls within this distance of the "
        "estimate orbited, by the vehicle, and (locate_nuisance) its honest 95 % "
-       "ellipse is under 600 m (m; 0: on the overflight alone)");
+       "semi-major axis is at most 600 m (m; 0: on the overflight alone)");
     RW(loiter_radius_m, "loiter orbit radius (m), flown to the left");
     RW(loiter_heading_gain,
        "gain in (0, 1] of the alpha-beta filter that smooths the heading read for the "
@@ -75,9 +75,9 @@ void bind_arrival_fields(py::class_<gr::rfseek::seeker_config>& c)
        "holds it (m; NaN: unknown, no height prior)");
     RW(locate_altitude_sigma_m,
        "location fit: std of the height prior, the altimeter's stated accuracy (m; 0: "
-       "the "
-       "height is fitted freely); fits more than 2.5 x this from locate_altitude_m are "
-       "not used");
+       "the height is fitted freely); fits more than 2.5 x this above "
+       "locate_altitude_m, or below both that band and twice the height at which an "
+       "orbit centred on the emitter swings as far as far_amplitude, are not used");
 #undef RW
 }
 

@@ -19,7 +19,9 @@
  *             the last estimate; no more fits after `done`.
  *   Without a fix after locate_max_orbits (extended by each move of the estimate, six
  *   at most, and by the arrival): back to seeking (locate_retry), or `done` without a
- *   location.
+ *   location; unless a confirming fit was held back only by its honest ellipse (wider
+ *   than 600 m) and the orbits around the estimate swing as they do over the emitter:
+ *   arrived, and that fix published as unsure.
  */
 
 #include "angle.h"
@@ -28,7 +30,9 @@
 #include <gr-rfseek/arrival.h>
 #include <gr-rfseek/scenario.h>
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <deque>
 
 namespace gr {
 namespace rfseek {
@@ -177,6 +181,28 @@ private:
         return l.altitude_m >= floor && l.altitude_m <= h0 + HEIGHT_SIGMAS * s;
     }
 
+    /*
+     * Whether the orbits flown around the estimate (the last CENTRED_ORBITS of them)
+     * place the emitter near: their Doppler's amplitude in the heading
+     * (doppler_amplitude) stays below the far check's. Far from the emitter every path
+     * arrives from one bearing and a turn swings the Doppler by f_d,max, wherever the
+     * orbit is; on an orbit around the emitter the ground velocity stays across the line
+     * of sight and the Doppler barely swings (0.3 f_d,max median over `windy`'s orbits,
+     * 0.9 at most; 0.96-1.1 over orbits kilometres off). Only where the far check runs
+     * (at least MIN_FAR_CHECK_ALTITUDE_M up): lower, an orbit 50 m off swings as far as
+     * one far.
+     */
+    bool orbits_place_emitter_near() const
+    {
+        if (!far_check())
+            return false;
+        doppler_amplitude a;
+        for (const auto& r : d_centred_orbits)
+            a.add(r[0], r[1], r[2]);
+        const double amp = a.amplitude();
+        return std::isfinite(amp) && amp < far_amplitude_hz();
+    }
+
     // Back to seeking: the strategy resumes where it was; the detector starts anew.
     command resume_seeking(const measurement& m)
     {
@@ -187,6 +213,8 @@ private:
         d_centred = false;
         d_x = d_y = 0.0;
         d_first_orbit.clear();
+        d_centred_orbits.clear();
+        d_held = emitter_location();
         d_candidate = emitter_location();
         d_next_fit_s = d_cfg.locate_orbits * orbit_s();
         command r = d_inner->update(m);
@@ -273,6 +301,7 @@ private:
         // locator's search area: a false overflight kilometres away can give tight
         // fits by the vehicle under the gust prior, not under the wider gust models.
         if (honest && d_status == 0 && !(l.major_m <= SEARCH_RADIUS_M)) {
+            d_held = l;
             if (d_retargets++ < MAX_RETARGETS) // more orbits may narrow it
                 extend_deadline(loitered, 0.0);
             return;
@@ -347,6 +376,11 @@ private:
                             std::isfinite(m.freq_hz) && !d_done;
         if (usable && !d_centred)
             d_first_orbit.add(m.time_s, h, m.freq_hz);
+        if (usable && d_centred) {
+            d_centred_orbits.push_back({ m.time_s, h, m.freq_hz });
+            while (d_centred_orbits.front()[0] < m.time_s - CENTRED_ORBITS * orbit_s())
+                d_centred_orbits.pop_front();
+        }
         if (usable)
             d_locator.add(m.time_s,
                           d_x,
@@ -400,6 +434,14 @@ private:
             d_candidate.valid) {
             // Arrived, but no fix as tight as the limit within the budget: the last
             // confirmed fix, published as unsure with its honest ellipse.
+            publish_fix(unsure_fix(m.time_s), c);
+        } else if (!d_done && !d_pending.valid && loitered >= d_deadline_s &&
+                   d_status == 0 && d_held.valid && orbits_place_emitter_near()) {
+            // Held back by the 600 m rule to the end of the budget, but the orbits
+            // around the estimate swing as they do over the emitter: arrived, and the
+            // fix published as unsure with its honest ellipse.
+            d_candidate = d_held;
+            d_status = 1;
             publish_fix(unsure_fix(m.time_s), c);
         } else if (!d_done && !d_pending.valid && loitered >= d_deadline_s) {
             // No fix: not the emitter's overflight after all, or too poor a geometry:
@@ -465,8 +507,9 @@ private:
     static constexpr double MAX_WIND_FRACTION = 0.9;         // of the airspeed
     static constexpr double MIN_FAR_CHECK_ALTITUDE_M = 50.0; // far_check()
     static constexpr double HEIGHT_SIGMAS = 2.5;             // height_agrees()
-    static constexpr int MAX_RETARGETS = 6; // moves of the orbited estimate that
-                                            // extend the time allowed
+    static constexpr double CENTRED_ORBITS = 2.0; // orbits_place_emitter_near()
+    static constexpr int MAX_RETARGETS = 6;       // moves of the orbited estimate that
+                                                  // extend the time allowed
     int d_status = 0;
     bool d_loitering = false; // stage 3: orbiting (checking, arrived or located)
     bool d_done = false;
@@ -475,6 +518,10 @@ private:
     emitter_location d_pending;   // confirmed fix, published with the next slot
     emitter_location d_candidate; // the first confirmed fit (published unsure)
     double d_heading_cmd = 0.0, d_last_heading = 0.0, d_loiter_start = 0.0;
+    // Time, heading, frequency of the usable measurements of the last CENTRED_ORBITS
+    // orbits around the estimate (orbits_place_emitter_near()).
+    std::deque<std::array<double, 3>> d_centred_orbits;
+    emitter_location d_held; // the last confirming fit held back by the 600 m rule
     heading_filter d_heading_filter; // the heading read, smoothed for dead reckoning
     std::uint64_t d_read_slot = 0;   // slot of the last heading read
     double d_x = 0.0, d_y = 0.0;     // dead-reckoned, origin where the loiter began

@@ -693,6 +693,35 @@ TEST(homing_seeker, arrives_only_where_the_honest_ellipse_places_the_emitter)
     EXPECT_FALSE(prior.location_in_ellipse);
 }
 
+TEST(homing_seeker, a_loiter_held_by_its_wide_ellipse_arrives_unsure_over_the_emitter)
+{
+    // windy, seed 5000023: the loiter over the emitter confirms its estimate, but the
+    // honest ellipse stays kilometres wide (strong gusts in a wind of 0.6 x the
+    // airspeed) and holds the arrival back to the end of the loiter's budget. The
+    // orbits around the estimate barely swing the Doppler, as orbits over the emitter
+    // do (far off they swing by f_d,max): the vehicle arrives and publishes the fix as
+    // unsure with that wide ellipse, which holds the emitter. Without the far check
+    // (arrival_far_amplitude 0) nothing tells that loiter from a false overflight:
+    // the vehicle seeks on and never arrives within the flight cap.
+    scenario sc;
+    sc.apply_preset("windy");
+    sc.seed = 5000023;
+    sc.self_arrival = true;
+    seeker_config cfg = simulation::seeker_for(sc, "adaptive");
+    const run_summary held = simulation(sc, cfg).run().summary;
+    ASSERT_TRUE(held.declared);
+    EXPECT_LT(held.arrival_detect_distance_m, 300.0);
+    ASSERT_TRUE(held.located);
+    EXPECT_TRUE(held.location_unsure);
+    EXPECT_GT(held.location_major_m, 600.0); // held back by the rule, then published
+    EXPECT_TRUE(held.location_in_ellipse);
+    EXPECT_LT(held.location_error_m, 100.0);
+    cfg.arrival_far_amplitude = 0.0;
+    const run_summary blind = simulation(sc, cfg).run().summary;
+    EXPECT_FALSE(blind.declared);
+    EXPECT_FALSE(blind.located);
+}
+
 TEST(homing_seeker, without_a_confirmed_fit_seeks_again_or_gives_up)
 {
     // No fit can confirm the estimate orbited (arrival_confirm_m 1 mm): with

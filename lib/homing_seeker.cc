@@ -184,13 +184,13 @@ private:
     /*
      * Whether the orbits flown around the estimate (the last CENTRED_ORBITS of them)
      * place the emitter near: their Doppler's amplitude in the heading
-     * (doppler_amplitude) stays below the far check's. Far from the emitter every path
-     * arrives from one bearing and a turn swings the Doppler by f_d,max, wherever the
-     * orbit is; on an orbit around the emitter the ground velocity stays across the line
-     * of sight and the Doppler barely swings (0.3 f_d,max median over `windy`'s orbits,
-     * 0.9 at most; 0.96-1.1 over orbits kilometres off). Only where the far check runs
-     * (at least MIN_FAR_CHECK_ALTITUDE_M up): lower, an orbit 50 m off swings as far as
-     * one far.
+     * (doppler_amplitude) stays below NEAR_AMPLITUDE_FRACTION of the far check's. Far
+     * from the emitter every path arrives from one bearing and a turn swings the
+     * Doppler by f_d,max wherever the orbit is (gusts moved it to 0.80-1.11 over orbits
+     * 1.6-5 km off); on an orbit around the emitter the ground velocity stays across
+     * the line of sight and the Doppler barely swings (`windy`: median 0.4 f_d,max, 90 %
+     * under 0.69). Only where the far check runs (at least MIN_FAR_CHECK_ALTITUDE_M up):
+     * lower, an orbit 50 m off swings as far as one far.
      */
     bool orbits_place_emitter_near() const
     {
@@ -200,7 +200,7 @@ private:
         for (const auto& r : d_centred_orbits)
             a.add(r[0], r[1], r[2]);
         const double amp = a.amplitude();
-        return std::isfinite(amp) && amp < far_amplitude_hz();
+        return std::isfinite(amp) && amp < NEAR_AMPLITUDE_FRACTION * far_amplitude_hz();
     }
 
     // Back to seeking: the strategy resumes where it was; the detector starts anew.
@@ -508,8 +508,9 @@ private:
     static constexpr double MIN_FAR_CHECK_ALTITUDE_M = 50.0; // far_check()
     static constexpr double HEIGHT_SIGMAS = 2.5;             // height_agrees()
     static constexpr double CENTRED_ORBITS = 2.0; // orbits_place_emitter_near()
-    static constexpr int MAX_RETARGETS = 6;       // moves of the orbited estimate that
-                                                  // extend the time allowed
+    static constexpr double NEAR_AMPLITUDE_FRACTION = 2.0 / 3.0; // of the far check's
+    static constexpr int MAX_RETARGETS = 6; // moves of the orbited estimate that
+                                            // extend the time allowed
     int d_status = 0;
     bool d_loitering = false; // stage 3: orbiting (checking, arrived or located)
     bool d_done = false;

@@ -376,7 +376,7 @@ private:
                             std::isfinite(m.freq_hz) && !d_done;
         if (usable && !d_centred)
             d_first_orbit.add(m.time_s, h, m.freq_hz);
-        if (usable && d_centred) {
+        if (usable && d_centred && std::isfinite(m.time_s)) {
             d_centred_orbits.push_back({ m.time_s, h, m.freq_hz });
             while (d_centred_orbits.front()[0] < m.time_s - CENTRED_ORBITS * orbit_s())
                 d_centred_orbits.pop_front();
@@ -441,8 +441,8 @@ private:
             // around the estimate swing as they do over the emitter: arrived, and the
             // fix published as unsure with its honest ellipse.
             d_candidate = d_held;
-            d_status = 1;
-            publish_fix(unsure_fix(m.time_s), c);
+            d_status = 1;                     // arrived now; located with the next slot
+            d_pending = unsure_fix(m.time_s); // published unsure
         } else if (!d_done && !d_pending.valid && loitered >= d_deadline_s) {
             // No fix: not the emitter's overflight after all, or too poor a geometry:
             // seek again (the strategy resumes where it was), detect anew.

@@ -147,10 +147,12 @@ struct RFSEEK_API seeker_config {
     double loiter_heading_gain = 0.3;
     //! Arrival is declared when a location fit falls within this distance of the
     //! estimate the vehicle orbits (m), lies by the vehicle and, with
-    //! locate_nuisance, its honest 95 % semi-major axis is at most 600 m (or, when the
-    //! orbits allowed run out, the last two orbits around the estimate swing the
-    //! Doppler by less than 2/3 of arrival_far_amplitude, as over the emitter: the fix
-    //! is then published unsure); 0: declared on the overflight alone.
+    //! locate_nuisance, its honest 95 % semi-major axis is at most 600 m. A loiter held
+    //! back by that rule arrives when the orbits allowed run out if, with
+    //! locate_altitude_m >= 50 m, its last two orbits around the estimate swing the
+    //! Doppler by less than 2/3 of the far check's threshold (far_amplitude()), as over
+    //! the emitter; its fix is then published unsure. 0: declared on the overflight
+    //! alone.
     double arrival_confirm_m = 30.0;
     //! Orbits of data before the first location fit (then every quarter orbit).
     double locate_orbits = 1.0;

@@ -4,7 +4,7 @@
  */
 
 /* BINDTOOL_HEADER_FILE(seeker.h) */
-/* BINDTOOL_HEADER_FILE_HASH(b833eaad989e8cb15f3db49f97f7ced1) */
+/* BINDTOOL_HEADER_FILE_HASH(1e34a23b29e890211b72ea9f511959b6) */
 
 #include "kwargs.h"
 #include <gr-rfseek/seeker.h>
@@ -46,10 +46,11 @@ void bind_arrival_fields(py::class_<gr::rfseek::seeker_config>& c)
     RW(arrival_confirm_m,
        "arrival is declared when a location fit falls within this distance of the "
        "estimate orbited, by the vehicle, and (locate_nuisance) its honest 95 % "
-       "semi-major axis is at most 600 m, or when the orbits allowed run out the last "
-       "two orbits around the estimate swing the Doppler by less than 2/3 of "
-       "arrival_far_amplitude, as over the emitter (the fix then unsure) (m; 0: on the "
-       "overflight alone)");
+       "semi-major axis is at most 600 m (m; 0: on the overflight alone). A loiter held "
+       "back by that rule arrives when the orbits allowed run out if, with "
+       "locate_altitude_m >= 50 m, its last two orbits around the estimate swing the "
+       "Doppler by less than 2/3 of far_amplitude(), as over the emitter; its fix is "
+       "then published unsure.");
     RW(loiter_radius_m, "loiter orbit radius (m), flown to the left");
     RW(loiter_heading_gain,
        "gain in (0, 1] of the alpha-beta filter that smooths the heading read for the "

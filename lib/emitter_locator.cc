@@ -296,39 +296,50 @@ model_fit fit_model(const problem& pr,
 }
 
 // The calibrated radius factors of the 95 % and 50 % ellipses, by the gust level the fit
-// found (emitter_location::gust_rms_mps: below 0.55, 0.9, 1.2 m/s, or above) and its mean
-// wind over the airspeed (below 0.52, or above). Measured by scripts/locator_envelope.py
-// --calibrate --runs 40 --seed 4000001 (27 cells x 40 runs, seeds no table uses;
-// docs/seeker.md, "How honest the ellipse is"): per bin, the factors that put the 94th
-// and the 50th percentile of the fixes' errors, in the metric of the mixture's
-// covariance, on the 95 % and 50 % contours. The 50 % factors were recalibrated with
-// the arrival that needs the honest ellipse (docs/notes/seeker.md, "Arrival and the
-// honest ellipse"); the 95 % factors are the first calibration's. Gusty or strong air
-// leaves a few fixes far off (the gusts' drift, which the Doppler of one orbit cannot
-// tell from a moved emitter): the 95 % factor grows far more than the 50 %.
+// found (emitter_location::gust_rms_mps: below 0.55, 0.9, 1.2 m/s, or above), its mean
+// wind over the airspeed (below 0.52, or above) and whether it is low in the wind
+// (locator_nuisance::LOW_HEIGHT_M, LOW_WIND_FRACTION: one row for any wind). Measured
+// by scripts/locator_envelope.py --calibrate --runs 40 --seed 4000001 (27 cells x 40
+// runs, seeds no table uses; docs/seeker.md, "How honest the ellipse is"): per bin, the
+// factors that put the 94th and the 50th percentile of the fixes' errors, in the metric
+// of the mixture's covariance, on the 95 % and 50 % contours. The light-wind and the
+// low rows are the calibration of the build with the arrival rules (docs/notes/
+// seeker.md, "Low in the wind"); the strong-wind row (few fixes) is the first
+// calibration's. Gusty or strong air leaves a few fixes far off (the gusts' drift,
+// which the Doppler of one orbit cannot tell from a moved emitter), low fits in the
+// wind most of all: the 95 % factor grows far more than the 50 %. Each entry is at
+// least its neighbours' toward calmer air.
 struct radius_factors {
     double k95, k50;
 };
-radius_factors ellipse_scale(double gust_rms_mps, double wind_fraction)
+radius_factors ellipse_scale(double gust_rms_mps, double wind_fraction, double height_m)
 {
     static constexpr std::array<double, 3> gust_edge{ { 0.55, 0.9, 1.2 } };
     static constexpr double wind_edge = 0.52;
-    static constexpr double f95[2][4] = { { 0.81, 1.57, 2.16, 12.49 },
-                                          { 3.35, 3.65, 6.07, 39.04 } };
-    static constexpr double f50[2][4] = { { 0.75, 0.91, 1.36, 5.09 },
-                                          { 1.08, 1.87, 5.27, 5.27 } };
+    // Rows: light wind, strong wind, low in the wind (gust bins 1-3; bin 0 keeps its
+    // row).
+    static constexpr double f95[3][4] = { { 0.80, 1.13, 2.08, 11.82 },
+                                          { 3.35, 3.65, 6.07, 39.04 },
+                                          { 3.35, 12.26, 12.26, 57.76 } };
+    static constexpr double f50[3][4] = { { 0.79, 0.86, 1.21, 2.99 },
+                                          { 1.08, 1.87, 5.27, 5.27 },
+                                          { 1.08, 5.76, 5.76, 8.27 } };
     const std::size_t i = static_cast<std::size_t>(
         std::upper_bound(gust_edge.begin(), gust_edge.end(), gust_rms_mps) -
         gust_edge.begin());
-    const std::size_t j = wind_fraction >= wind_edge ? 1 : 0;
+    std::size_t j = wind_fraction >= wind_edge ? 1 : 0;
+    if (i > 0 && height_m < locator_nuisance::LOW_HEIGHT_M &&
+        wind_fraction >= locator_nuisance::LOW_WIND_FRACTION)
+        j = 2;
     return { f95[j][i], f50[j][i] };
 }
 
 } // namespace
 
-std::array<double, 2> locator_nuisance::factors(double gust_rms_mps, double wind_fraction)
+std::array<double, 2>
+locator_nuisance::factors(double gust_rms_mps, double wind_fraction, double height_m)
 {
-    const radius_factors k = ellipse_scale(gust_rms_mps, wind_fraction);
+    const radius_factors k = ellipse_scale(gust_rms_mps, wind_fraction, height_m);
     return { k.k95, k.k50 };
 }
 
@@ -385,7 +396,8 @@ void carry_nuisance(const problem& pr,
     }
     const radius_factors k =
         nu.calibrated ? ellipse_scale(out.gust_rms_mps,
-                                      std::hypot(mean(2), mean(3)) / nu.airspeed_mps)
+                                      std::hypot(mean(2), mean(3)) / nu.airspeed_mps,
+                                      height / wsum)
                       : radius_factors{ 1.0, 1.0 };
     set_axes(cov.topLeftCorner<2, 2>(), k.k95 * nu.scale95, k.k50 * nu.scale50, out);
     out.wind_sigma_mps = std::sqrt(std::max(0.5 * (cov(2, 2) + cov(3, 3)), 0.0));

@@ -204,7 +204,7 @@ def _calibration_run(job):
     # In units of the 95 % contour without the calibrated factors (divided out; the
     # user's scale95 is 1 here): u^2 + v^2 <= 1 inside.
     wind = math.hypot(loc.wind_east_mps, loc.wind_north_mps) / sc.speed_mps
-    k95 = rfseek.locator_nuisance.factors(loc.gust_rms_mps, wind)[0]
+    k95 = rfseek.locator_nuisance.factors(loc.gust_rms_mps, wind, loc.altitude_m)[0]
     return {"cell": name, "nees95": (u * u + v * v) * k95 * k95,
             "gust_rms": loc.gust_rms_mps, "wind": wind,
             "major": loc.major_m, "minor": loc.minor_m, "T": loc.consistency,
@@ -237,37 +237,49 @@ def calibrate(a):
         at = lambda p: q[min(len(q) - 1, int(p * len(q)))]
         return math.sqrt(at(0.94)), math.sqrt(at(0.5) * chi95 / chi50)
 
-    print("| wind / airspeed | gust level (m/s) | fixes | in 95 % | in 50 % "
+    print("| fits | wind / airspeed | gust level (m/s) | fixes | in 95 % | in 50 % "
           "| factor 95 % | factor 50 % |")
-    print("| --- | --- | --- | --- | --- | --- | --- |")
+    print("| --- | --- | --- | --- | --- | --- | --- | --- |")
+    # Rows: one per wind bin for the fits that are not low; then one for the low fits
+    # (under --low-height, gusts from the first edge, wind from --low-wind).
+    def low(r):
+        return (r["alt"] < a.low_height and r["gust_rms"] >= gust_edges[0]
+                and r["wind"] >= a.low_wind)
+
+    rows = [("not low", wlo, whi,
+             lambda r, wlo=wlo, whi=whi: not low(r) and wlo <= r["wind"] < whi)
+            for wlo, whi in zip([0.0] + wind_edges, wind_edges + [1e9])]
+    rows.append(("under %g m" % a.low_height, a.low_wind, 1e9, low))
     table95, table50 = [], []
-    for wlo, whi in zip([0.0] + wind_edges, wind_edges + [1e9]):
+    for label, wlo, whi, member in rows:
         row95, row50 = [], []
         for lo, hi in zip([0.0] + gust_edges, gust_edges + [1e9]):
-            q = [r["nees95"] for r in res
-                 if lo <= r["gust_rms"] < hi and wlo <= r["wind"] < whi]
+            q = [r["nees95"] for r in res if lo <= r["gust_rms"] < hi and member(r)]
             f95, f50 = factors(q) if len(q) >= 10 else (float("nan"),) * 2
             row95.append(f95)
             row50.append(f50)
-            print("| %.2f-%s | %.2f-%s | %d | %s | %s | %.2f | %.2f |" % (
-                wlo, "%.2f" % whi if whi < 1e9 else "", lo,
+            print("| %s | %.2f-%s | %.2f-%s | %d | %s | %s | %.2f | %.2f |" % (
+                label, wlo, "%.2f" % whi if whi < 1e9 else "", lo,
                 "%.2f" % hi if hi < 1e9 else "", len(q),
                 "%.1f %%" % (100.0 * sum(x <= 1.0 for x in q) / len(q)) if q else "-",
                 "%.1f %%" % (100.0 * sum(x * chi95 <= chi50 for x in q) / len(q))
                 if q else "-", f95, f50))
         table95.append(row95)
         table50.append(row50)
-    # Never smaller in stronger gusts or wind (a sparse bin borrows its neighbour's).
+    # Never smaller in stronger gusts or wind, or lower down (a sparse bin borrows its
+    # neighbour's; the low row is at least every wind row).
     for t in (table95, table50):
         for j, row in enumerate(t):
             for i in range(len(row)):
                 prev = [row[i - 1]] if i else []
-                below = [t[j - 1][i]] if j else []
+                below = [t[k][i] for k in range(j)] if j == len(t) - 1 else \
+                    ([t[j - 1][i]] if j else [])
                 cand = [v for v in [row[i]] + prev + below if v == v]
                 row[i] = max(cand) if cand else 1.0
-    print("\nfor ellipse_scale(): f95 = %s, f50 = %s" % (
+    print("\nfor ellipse_scale(): f95 = %s, f50 = %s (rows: %s)" % (
         [[round(v, 2) for v in r] for r in table95],
-        [[round(v, 2) for v in r] for r in table50]))
+        [[round(v, 2) for v in r] for r in table50],
+        ", ".join(label + (" wind %.2f-" % wlo) for label, wlo, _, _ in rows)))
     return 0
 
 
@@ -295,6 +307,12 @@ def main(argv):
                    help="--calibrate: gust level bin edges (m/s)")
     p.add_argument("--wind-bins", default="0.52",
                    help="--calibrate: bin edges of the fitted wind over the airspeed")
+    p.add_argument("--low-height", type=float, default=70.0,
+                   help="--calibrate: fits under this height (m) that found gusts get "
+                   "a row of their own (locator_nuisance.LOW_HEIGHT_M)")
+    p.add_argument("--low-wind", type=float, default=0.2,
+                   help="--calibrate: ... and a wind of at least this fraction of the "
+                   "airspeed (locator_nuisance.LOW_WIND_FRACTION)")
     p.add_argument("--from-json", default=None,
                    help="--calibrate: tabulate the runs of an earlier --json file")
     a = p.parse_args(argv)

@@ -225,10 +225,22 @@ struct RFSEEK_API locator_nuisance {
     double airspeed_mps = 10.0;
     static constexpr double GUST_WIDE_MPS = 3.0;
     static constexpr std::array<double, 2> GUST_TAUS_S{ { 15.0, 60.0 } };
+    //! Fits under LOW_HEIGHT_M (emitter_location::altitude_m, m) that found gusts
+    //! (gust_rms_mps >= 0.55 m/s) and a mean wind of at least LOW_WIND_FRACTION of
+    //! the airspeed take the low factors: low over the emitter in the wind a fix's
+    //! error follows the gusts' drift and the compass far more than its Gaussian
+    //! ellipse says (up to 12 x the radius in moderate gusts).
+    static constexpr double LOW_HEIGHT_M = 70.0;
+    static constexpr double LOW_WIND_FRACTION = 0.2;
     //! The calibrated radius factors {95 %, 50 %} of a fix whose fit found this gust
-    //! level (emitter_location::gust_rms_mps) and mean wind |w| / airspeed_mps;
-    //! applied when calibrated, before the user's scale95 and scale50.
-    static std::array<double, 2> factors(double gust_rms_mps, double wind_fraction);
+    //! level (emitter_location::gust_rms_mps), mean wind |w| / airspeed_mps and height
+    //! (emitter_location::altitude_m; the default: not low); applied when calibrated,
+    //! before the user's scale95 and scale50. Never smaller in stronger gusts or
+    //! wind, or lower down.
+    static std::array<double, 2>
+    factors(double gust_rms_mps,
+            double wind_fraction,
+            double height_m = std::numeric_limits<double>::infinity());
 };
 
 /*!

@@ -18,6 +18,7 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -175,26 +176,53 @@ TEST(honest_ellipse, bad_nuisance_settings_are_refused_by_name)
 
 TEST(honest_ellipse, the_calibrated_factors_never_shrink_in_stronger_air)
 {
-    // The radius factors are steps calibrated per bin of the gust level and the wind
-    // the fit found: never smaller in stronger gusts or wind, and the 50 % contour
-    // (radius k50 sqrt(chi2_50)) always inside the 95 % one (k95 sqrt(chi2_95)).
+    // The radius factors are steps calibrated per bin of the gust level, the wind and
+    // the height the fit found: never smaller in stronger gusts or wind or lower
+    // down, and the 50 % contour (radius k50 sqrt(chi2_50)) always inside the 95 % one
+    // (k95 sqrt(chi2_95)).
     const double chi95 = 5.991464547107979, chi50 = 1.3862943611198906;
-    std::array<double, 2> prev_wind[40];
-    for (int w = 0; w <= 10; ++w) {
-        const double wind = 0.1 * w;
-        std::array<double, 2> prev{ { 0.0, 0.0 } };
-        for (int g = 0; g < 40; ++g) {
-            const std::array<double, 2> k = locator_nuisance::factors(0.05 * g, wind);
-            EXPECT_GT(k[0], 0.0);
-            EXPECT_GT(k[1], 0.0);
-            EXPECT_GE(k[0], prev[0]) << "gust " << 0.05 * g << " wind " << wind;
-            EXPECT_GE(k[1], prev[1]) << "gust " << 0.05 * g << " wind " << wind;
-            if (w > 0) {
-                EXPECT_GE(k[0], prev_wind[g][0]);
-                EXPECT_GE(k[1], prev_wind[g][1]);
+    const double inf = std::numeric_limits<double>::infinity();
+    const double heights[] = { inf, 150.0, locator_nuisance::LOW_HEIGHT_M, 69.0, 20.0 };
+    std::array<double, 2> prev_height[11][40];
+    for (int hi = 0; hi < 5; ++hi) {
+        const double h = heights[hi];
+        std::array<double, 2> prev_wind[40];
+        for (int w = 0; w <= 10; ++w) {
+            const double wind = 0.1 * w;
+            std::array<double, 2> prev{ { 0.0, 0.0 } };
+            for (int g = 0; g < 40; ++g) {
+                const std::array<double, 2> k =
+                    locator_nuisance::factors(0.05 * g, wind, h);
+                const std::string at = "gust " + std::to_string(0.05 * g) + " wind " +
+                                       std::to_string(wind) + " height " +
+                                       std::to_string(h);
+                EXPECT_GT(k[0], 0.0) << at;
+                EXPECT_GT(k[1], 0.0) << at;
+                EXPECT_GE(k[0], prev[0]) << at;
+                EXPECT_GE(k[1], prev[1]) << at;
+                if (w > 0) {
+                    EXPECT_GE(k[0], prev_wind[g][0]) << at;
+                    EXPECT_GE(k[1], prev_wind[g][1]) << at;
+                }
+                if (hi > 0) {
+                    EXPECT_GE(k[0], prev_height[w][g][0]) << at;
+                    EXPECT_GE(k[1], prev_height[w][g][1]) << at;
+                }
+                EXPECT_LT(k[1] * std::sqrt(chi50), k[0] * std::sqrt(chi95)) << at;
+                prev = prev_wind[g] = prev_height[w][g] = k;
             }
-            EXPECT_LT(k[1] * std::sqrt(chi50), k[0] * std::sqrt(chi95));
-            prev = prev_wind[g] = k;
         }
     }
+    // The height defaults to "not low"; a low fit takes the low factors only with
+    // gusts found and in the wind.
+    const double low = locator_nuisance::LOW_HEIGHT_M - 20.0;
+    const double windy = locator_nuisance::LOW_WIND_FRACTION;
+    EXPECT_EQ(locator_nuisance::factors(0.7, windy),
+              locator_nuisance::factors(0.7, windy, 150.0));
+    EXPECT_GT(locator_nuisance::factors(0.7, windy, low)[0],
+              locator_nuisance::factors(0.7, windy)[0]);
+    EXPECT_EQ(locator_nuisance::factors(0.7, 0.5 * windy, low),
+              locator_nuisance::factors(0.7, 0.5 * windy));
+    EXPECT_EQ(locator_nuisance::factors(0.3, windy, low),
+              locator_nuisance::factors(0.3, windy));
 }

@@ -4,12 +4,13 @@
  */
 
 /* BINDTOOL_HEADER_FILE(arrival.h) */
-/* BINDTOOL_HEADER_FILE_HASH(5012a74006211316aca610d16f72b0ad) */
+/* BINDTOOL_HEADER_FILE_HASH(d3bfbc35c37c622c012d75f99f652ca9) */
 
 #include <gr-rfseek/arrival.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 #include <cstdio>
+#include <limits>
 #include <string>
 
 namespace py = pybind11;
@@ -268,10 +269,16 @@ void bind_locator_nuisance_class(py::module& m)
                     &locator_nuisance::factors,
                     py::arg("gust_rms_mps"),
                     py::arg("wind_fraction"),
+                    py::arg("height_m") = std::numeric_limits<double>::infinity(),
                     "The calibrated radius factors [k95, k50] of a fix whose fit "
-                    "found this gust level (emitter_location.gust_rms_mps) and mean "
-                    "wind |wind| / airspeed_mps; applied when calibrated is True, "
-                    "before the user's scale95 and scale50.");
+                    "found this gust level (emitter_location.gust_rms_mps), mean "
+                    "wind |wind| / airspeed_mps and height (emitter_location."
+                    "altitude_m; default: not low); applied when calibrated is True, "
+                    "before the user's scale95 and scale50. Fits under 70 m "
+                    "(LOW_HEIGHT_M in C++) that found gusts (0.55 m/s or more) in a "
+                    "mean wind of at least 0.2 of the airspeed (LOW_WIND_FRACTION) "
+                    "take the low factors. Never smaller in stronger gusts or wind, "
+                    "or lower down.");
 }
 
 void bind_emitter_locator_class(py::module& m)

@@ -304,11 +304,12 @@ model_fit fit_model(const problem& pr,
 // factors that put the 94th and the 50th percentile of the fixes' errors, in the metric
 // of the mixture's covariance, on the 95 % and 50 % contours. The light-wind and the
 // low rows are the calibration of the build with the arrival rules (docs/notes/
-// seeker.md, "Low in the wind"); the strong-wind row (few fixes) is the first
-// calibration's. Gusty or strong air leaves a few fixes far off (the gusts' drift,
-// which the Doppler of one orbit cannot tell from a moved emitter), low fits in the
-// wind most of all: the 95 % factor grows far more than the 50 %. Each entry is at
-// least its neighbours' toward calmer air.
+// seeker.md, "Low in the wind"); the strong-wind row (few fixes) keeps its earlier
+// factors (95 %: the first calibration's; 50 %: the recalibration with the arrival
+// that needs the honest ellipse). Gusty or strong air leaves a few fixes far off (the
+// gusts' drift, which the Doppler of one orbit cannot tell from a moved emitter), low
+// fits in the wind most of all: the 95 % factor grows far more than the 50 %. Each entry
+// is at least its neighbours' toward calmer air.
 struct radius_factors {
     double k95, k50;
 };
@@ -327,9 +328,11 @@ radius_factors ellipse_scale(double gust_rms_mps, double wind_fraction, double h
     const std::size_t i = static_cast<std::size_t>(
         std::upper_bound(gust_edge.begin(), gust_edge.end(), gust_rms_mps) -
         gust_edge.begin());
-    std::size_t j = wind_fraction >= wind_edge ? 1 : 0;
-    if (i > 0 && height_m < locator_nuisance::LOW_HEIGHT_M &&
-        wind_fraction >= locator_nuisance::LOW_WIND_FRACTION)
+    // Unknown (NaN) counts as the worst: strong wind, low (a NaN gust level already
+    // falls in the top bin).
+    std::size_t j = !(wind_fraction < wind_edge) ? 1 : 0;
+    if (i > 0 && !(height_m >= locator_nuisance::LOW_HEIGHT_M) &&
+        !(wind_fraction < locator_nuisance::LOW_WIND_FRACTION))
         j = 2;
     return { f95[j][i], f50[j][i] };
 }

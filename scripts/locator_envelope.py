@@ -280,6 +280,8 @@ def calibrate(a):
         [[round(v, 2) for v in r] for r in table95],
         [[round(v, 2) for v in r] for r in table50],
         ", ".join(label + (" wind %.2f-" % wlo) for label, wlo, _, _ in rows)))
+    print("(lib/emitter_locator.cc keeps the strong-wind row's earlier factors, which "
+          "rest on more fixes; docs/notes/seeker.md, \"Low in the wind\")")
     return 0
 
 
@@ -309,10 +311,10 @@ def main(argv):
                    help="--calibrate: bin edges of the fitted wind over the airspeed")
     p.add_argument("--low-height", type=float, default=70.0,
                    help="--calibrate: fits under this height (m) that found gusts get "
-                   "a row of their own (locator_nuisance.LOW_HEIGHT_M)")
+                   "a row of their own (LOW_HEIGHT_M in C++, 70)")
     p.add_argument("--low-wind", type=float, default=0.2,
                    help="--calibrate: ... and a wind of at least this fraction of the "
-                   "airspeed (locator_nuisance.LOW_WIND_FRACTION)")
+                   "airspeed (LOW_WIND_FRACTION in C++, 0.2)")
     p.add_argument("--from-json", default=None,
                    help="--calibrate: tabulate the runs of an earlier --json file")
     a = p.parse_args(argv)

@@ -236,7 +236,7 @@ struct RFSEEK_API locator_nuisance {
     //! level (emitter_location::gust_rms_mps), mean wind |w| / airspeed_mps and height
     //! (emitter_location::altitude_m; the default: not low); applied when calibrated,
     //! before the user's scale95 and scale50. Never smaller in stronger gusts or
-    //! wind, or lower down.
+    //! wind, or lower down; a NaN argument counts as the worst (strongest, lowest).
     static std::array<double, 2>
     factors(double gust_rms_mps,
             double wind_fraction,

@@ -225,4 +225,29 @@ TEST(honest_ellipse, the_calibrated_factors_never_shrink_in_stronger_air)
               locator_nuisance::factors(0.7, 0.5 * windy));
     EXPECT_EQ(locator_nuisance::factors(0.3, windy, low),
               locator_nuisance::factors(0.3, windy));
+    // The edges: a fit at LOW_HEIGHT_M or just under LOW_WIND_FRACTION is not low; a
+    // gust level of exactly 0.55 m/s is gusts found.
+    const double h0 = locator_nuisance::LOW_HEIGHT_M;
+    const double under = std::nextafter(windy, 0.0);
+    EXPECT_EQ(locator_nuisance::factors(0.7, windy, h0),
+              locator_nuisance::factors(0.7, windy));
+    EXPECT_EQ(locator_nuisance::factors(0.7, under, low),
+              locator_nuisance::factors(0.7, under));
+    EXPECT_GT(locator_nuisance::factors(0.55, windy, low)[0],
+              locator_nuisance::factors(0.55, windy)[0]);
+    // Unknown counts as the worst: a NaN gust level, wind or height.
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    EXPECT_EQ(locator_nuisance::factors(nan, 0.1), locator_nuisance::factors(5.0, 0.1));
+    EXPECT_EQ(locator_nuisance::factors(0.7, nan), locator_nuisance::factors(0.7, 1.0));
+    EXPECT_EQ(locator_nuisance::factors(0.7, nan, low),
+              locator_nuisance::factors(0.7, 1.0, low));
+    EXPECT_EQ(locator_nuisance::factors(0.7, windy, nan),
+              locator_nuisance::factors(0.7, windy, low));
+    // The low row is the calibration's (docs/notes/seeker.md, "Low in the wind"): in
+    // moderate gusts 12.26 / 1.13 x the light-wind row's 95 % radius, the 50 % one
+    // widened less (the errors' tails).
+    const std::array<double, 2> calm = locator_nuisance::factors(0.7, 0.1);
+    const std::array<double, 2> lw = locator_nuisance::factors(0.7, windy, low);
+    EXPECT_NEAR(lw[0] / calm[0], 12.26 / 1.13, 1e-9);
+    EXPECT_LT(lw[1] / calm[1], lw[0] / calm[0]);
 }

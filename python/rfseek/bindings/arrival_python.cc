@@ -4,7 +4,7 @@
  */
 
 /* BINDTOOL_HEADER_FILE(arrival.h) */
-/* BINDTOOL_HEADER_FILE_HASH(d3bfbc35c37c622c012d75f99f652ca9) */
+/* BINDTOOL_HEADER_FILE_HASH(a61ad25bbb51b267cdfdf8c1a2962ad9) */
 
 #include <gr-rfseek/arrival.h>
 #include <pybind11/pybind11.h>
@@ -278,7 +278,7 @@ void bind_locator_nuisance_class(py::module& m)
                     "(LOW_HEIGHT_M in C++) that found gusts (0.55 m/s or more) in a "
                     "mean wind of at least 0.2 of the airspeed (LOW_WIND_FRACTION) "
                     "take the low factors. Never smaller in stronger gusts or wind, "
-                    "or lower down.");
+                    "or lower down; NaN counts as the worst (strongest, lowest).");
 }
 
 void bind_emitter_locator_class(py::module& m)

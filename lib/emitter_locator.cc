@@ -369,10 +369,13 @@ void carry_nuisance(const problem& pr,
         heights.push_back(h0 + nu.altimeter_m);
     }
     std::vector<model_fit> fits;
+    std::vector<char> wide, off; // the model's gusts are wide; its height is off h0
     double best = -std::numeric_limits<double>::infinity();
     for (const auto& gu : gusts)
         for (double h : heights) {
             fits.push_back(fit_model(pr, th0, var, gu.first, gu.second, h, sigma_h));
+            wide.push_back(&gu != &gusts.front());
+            off.push_back(h != h0);
             best = std::max(best, fits.back().log_evidence);
         }
     if (!std::isfinite(best))
@@ -389,10 +392,12 @@ void carry_nuisance(const problem& pr,
     }
     mean /= wsum;
     Eigen::Matrix4d cov = Eigen::Matrix4d::Zero();
-    double spread = 0.0;
+    double spread = 0.0, wide_w = 0.0, off_w = 0.0;
     for (std::size_t j = 0; j < fits.size(); ++j) {
         if (w[j] == 0.0)
             continue;
+        wide_w += wide[j] ? w[j] / wsum : 0.0;
+        off_w += off[j] ? w[j] / wsum : 0.0;
         const Eigen::Vector4d d = fits[j].th.head(4) - mean;
         cov += (w[j] / wsum) * (fits[j].cov + d * d.transpose());
         spread += (w[j] / wsum) * d.head(2).squaredNorm();
@@ -411,6 +416,8 @@ void carry_nuisance(const problem& pr,
     out.altitude_m = height / wsum;
     out.hypotheses = static_cast<int>(fits.size());
     out.model_spread_m = std::sqrt(spread);
+    out.wide_gust_weight = wide_w;
+    out.off_height_weight = off_w;
 }
 
 } // namespace

@@ -33,6 +33,7 @@
 #include <array>
 #include <cmath>
 #include <deque>
+#include <limits>
 
 namespace gr {
 namespace rfseek {
@@ -216,6 +217,7 @@ private:
         d_centred_orbits.clear();
         d_held = emitter_location();
         d_candidate = emitter_location();
+        d_last_offset = std::numeric_limits<double>::infinity();
         d_next_fit_s = d_cfg.locate_orbits * orbit_s();
         command r = d_inner->update(m);
         r.status = 0;
@@ -279,6 +281,62 @@ private:
             return now;
         }
         return l;
+    }
+
+    // The honest fit of all the data (d_wandering), unsure, when it is valid, agrees
+    // with the altimeter and places the emitter within the locator's search area.
+    bool wandering_fix(double t)
+    {
+        emitter_location now = d_locator.fit(d_x, d_y, true);
+        if (!now.valid || !height_agrees(now) ||
+            !(std::hypot(now.east_m, now.north_m) <= SEARCH_RADIUS_M))
+            return false;
+        if (d_cfg.locate_split_gate > 0.0)
+            d_locator.check_split(now, d_cfg.locate_split_gate);
+        now.unsure = true;
+        now.time_s = t;
+        d_wandering = now;
+        return true;
+    }
+
+    /*
+     * The loiter's budget ran out at time t without a published fix. Arrived with a
+     * confirmed fix: publish it, unsure. Not arrived: arrive unsure where the orbits
+     * show the emitter (a fit held back by the 600 m rule; or, in gusts, fits that
+     * wander). Otherwise seek again (returns false) or, without locate_retry, give up.
+     */
+    bool end_of_budget(double t, command& c)
+    {
+        if (d_status == 1 && d_candidate.valid) {
+            // Arrived, but no fix as tight as the limit within the budget: the last
+            // confirmed fix, published as unsure with its honest ellipse.
+            publish_fix(unsure_fix(t), c);
+        } else if (d_status == 0 && d_held.valid && orbits_place_emitter_near()) {
+            // Held back by the 600 m rule to the end of the budget, but the orbits
+            // around the estimate swing as they do over the emitter: arrived, and the
+            // fix published as unsure with its honest ellipse.
+            d_candidate = d_held;
+            d_status = 1;              // arrived now; located with the next slot
+            d_pending = unsure_fix(t); // published unsure
+        } else if (d_status == 0 && !d_held.valid && d_centred && d_cfg.locate_nuisance &&
+                   d_last_offset <= WANDER_CONFIRMS * d_cfg.arrival_confirm_m &&
+                   orbits_place_emitter_near() && wandering_fix(t)) {
+            // No fit agreed with the estimate orbited: in gusts the estimate wanders
+            // more than arrival_confirm_m from fit to fit (the last within
+            // WANDER_CONFIRMS x it). But the orbits swing as they do over the emitter
+            // and a fit of all the data places it by the vehicle: arrived, that fit
+            // published as unsure with its honest ellipse.
+            d_candidate = d_wandering;
+            d_status = 1;
+            d_pending = d_wandering;
+        } else {
+            // No fix: not the emitter's overflight after all, or too poor a geometry:
+            // seek again (the strategy resumes where it was), detect anew.
+            if (d_cfg.locate_retry)
+                return false;
+            d_done = true;
+        }
+        return true;
     }
 
     // A fit l that confirms the estimate orbited: arrived (if not yet); its ellipse
@@ -417,6 +475,8 @@ private:
                      (target_offset(l, m.time_s) <= d_cfg.arrival_confirm_m &&
                       std::hypot(l.east_m, l.north_m) <=
                           d_cfg.arrival_confirm_m + d_cfg.loiter_radius_m));
+                if (d_centred)
+                    d_last_offset = target_offset(l, m.time_s);
                 const double transit = retarget(l, m.time_s);
                 if (agrees) {
                     confirmed(l, loitered, c);
@@ -430,26 +490,9 @@ private:
             }
             d_next_fit_s = loitered + next * orbit_s();
         }
-        if (!d_done && !d_pending.valid && loitered >= d_deadline_s && d_status == 1 &&
-            d_candidate.valid) {
-            // Arrived, but no fix as tight as the limit within the budget: the last
-            // confirmed fix, published as unsure with its honest ellipse.
-            publish_fix(unsure_fix(m.time_s), c);
-        } else if (!d_done && !d_pending.valid && loitered >= d_deadline_s &&
-                   d_status == 0 && d_held.valid && orbits_place_emitter_near()) {
-            // Held back by the 600 m rule to the end of the budget, but the orbits
-            // around the estimate swing as they do over the emitter: arrived, and the
-            // fix published as unsure with its honest ellipse.
-            d_candidate = d_held;
-            d_status = 1;                     // arrived now; located with the next slot
-            d_pending = unsure_fix(m.time_s); // published unsure
-        } else if (!d_done && !d_pending.valid && loitered >= d_deadline_s) {
-            // No fix: not the emitter's overflight after all, or too poor a geometry:
-            // seek again (the strategy resumes where it was), detect anew.
-            if (d_cfg.locate_retry)
-                return resume_seeking(m);
-            d_done = true;
-        }
+        if (!d_done && !d_pending.valid && loitered >= d_deadline_s &&
+            !end_of_budget(m.time_s, c))
+            return resume_seeking(m);
         d_heading_cmd = d_centred
                             ? orbit_heading(m.time_s)
                             : wrap_remainder(d_heading_cmd + turn_per_slot() * slots);
@@ -509,6 +552,7 @@ private:
     static constexpr double HEIGHT_SIGMAS = 2.5;             // height_agrees()
     static constexpr double CENTRED_ORBITS = 2.0; // orbits_place_emitter_near()
     static constexpr double NEAR_AMPLITUDE_FRACTION = 2.0 / 3.0; // of the far check's
+    static constexpr double WANDER_CONFIRMS = 4.0;               // of arrival_confirm_m
     static constexpr int MAX_RETARGETS = 6; // moves of the orbited estimate that
                                             // extend the time allowed
     int d_status = 0;
@@ -522,7 +566,10 @@ private:
     // Time, heading, frequency of the usable measurements of the last CENTRED_ORBITS
     // orbits around the estimate (orbits_place_emitter_near()).
     std::deque<std::array<double, 3>> d_centred_orbits;
-    emitter_location d_held; // the last confirming fit held back by the 600 m rule
+    emitter_location d_held;      // the last confirming fit held back by the 600 m rule
+    emitter_location d_wandering; // wandering_fix()
+    // How far the last fit around an estimate lay from it (target_offset; m).
+    double d_last_offset = std::numeric_limits<double>::infinity();
     heading_filter d_heading_filter; // the heading read, smoothed for dead reckoning
     std::uint64_t d_read_slot = 0;   // slot of the last heading read
     double d_x = 0.0, d_y = 0.0;     // dead-reckoned, origin where the loiter began

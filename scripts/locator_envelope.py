@@ -210,7 +210,8 @@ def _calibration_run(job):
             "major": loc.major_m, "minor": loc.minor_m, "T": loc.consistency,
             "spread": loc.model_spread_m, "rms": loc.rms_hz, "alt": loc.altitude_m,
             "range": math.hypot(loc.east_m, loc.north_m), "seed": seed,
-            "error": math.hypot(ex, ey), "unsure": loc.unsure}
+            "error": math.hypot(ex, ey), "unsure": loc.unsure,
+            "wide": loc.wide_gust_weight, "offh": loc.off_height_weight}
 
 
 def calibrate(a):

@@ -191,6 +191,11 @@ struct RFSEEK_API emitter_location {
     int hypotheses = 1;
     //! RMS distance of the nuisance models' fixes from their mean (m).
     double model_spread_m = 0.0;
+    //! Evidence weight of the wide gust models (GUST_WIDE_MPS; 0..1, 0 without them).
+    double wide_gust_weight = 0.0;
+    //! Evidence weight of the heights the altimeter's error allows (h -+ altimeter_m;
+    //! 0..1, 0 without them).
+    double off_height_weight = 0.0;
     //! RMS of the gust states the fit found (m/s per axis; 0 without gust states).
     double gust_rms_mps = 0.0;
     //! Published although its 95 % ellipse is larger than the seeker's limit

@@ -151,7 +151,9 @@ struct RFSEEK_API seeker_config {
     //! back by that rule arrives when the orbits allowed run out if, with
     //! locate_altitude_m >= 50 m, its last two orbits around the estimate swing the
     //! Doppler by less than 2/3 of the far check's threshold (far_amplitude()), as over
-    //! the emitter; its fix is then published unsure. 0: declared on the overflight
+    //! the emitter; its fix is then published unsure. So does a loiter none of whose
+    //! fits agree (in gusts), if the last lay within 4 x this of the estimate: a fit of
+    //! all the data, within 600 m, is published unsure. 0: declared on the overflight
     //! alone.
     double arrival_confirm_m = 30.0;
     //! Orbits of data before the first location fit (then every quarter orbit).

@@ -722,6 +722,44 @@ TEST(homing_seeker, a_loiter_held_by_its_wide_ellipse_arrives_unsure_over_the_em
     EXPECT_FALSE(blind.located);
 }
 
+TEST(homing_seeker,
+     a_loiter_whose_estimate_wanders_in_gusts_arrives_unsure_over_the_emitter)
+{
+    // realistic with 2.5 m/s gusts of 30 s, seed 5000081: the first loiter starts
+    // 80 m from the emitter, but the gusts move each fit 30-110 m from the estimate
+    // orbited, so none confirms it (arrival_confirm_m, 30 m). Its orbits barely swing
+    // the Doppler, as orbits over the emitter do, and the last fit lay within 4 x
+    // arrival_confirm_m of the estimate: at the end of the loiter's budget the vehicle
+    // arrives and publishes the fit of all the data as unsure, with its honest
+    // ellipse, which holds the emitter. Without the far check (arrival_far_amplitude
+    // 0) nothing tells those orbits from a far one's: the vehicle seeks on, loiter
+    // after loiter, and never arrives within the flight cap.
+    scenario sc;
+    sc.apply_preset("realistic");
+    sc.wind_gust_mps = 2.5;
+    sc.wind_gust_tau_s = 30.0;
+    sc.seed = 5000081;
+    sc.self_arrival = true;
+    seeker_config cfg = simulation::seeker_for(sc, "adaptive");
+    const run_result r = simulation(sc, cfg).run(true);
+    const auto [loiter, loiter_end] = first_loiter(r);
+    ASSERT_TRUE(loiter);
+    EXPECT_LT(loiter->distance_m, 100.0);
+    ASSERT_TRUE(r.summary.declared);
+    EXPECT_FALSE(r.summary.false_arrival);
+    EXPECT_LE(r.summary.arrival_time_s, loiter_end);
+    EXPECT_LT(r.summary.arrival_detect_distance_m, 300.0);
+    ASSERT_TRUE(r.summary.located);
+    EXPECT_TRUE(r.summary.location_unsure);
+    EXPECT_GT(r.summary.location_major_m, cfg.locate_max_axis_m);
+    EXPECT_TRUE(r.summary.location_in_ellipse);
+    EXPECT_LT(r.summary.location_error_m, 50.0);
+    cfg.arrival_far_amplitude = 0.0;
+    const run_summary blind = simulation(sc, cfg).run().summary;
+    EXPECT_FALSE(blind.declared);
+    EXPECT_FALSE(blind.located);
+}
+
 TEST(homing_seeker, without_a_confirmed_fit_seeks_again_or_gives_up)
 {
     // No fit can confirm the estimate orbited (arrival_confirm_m 1 mm): with

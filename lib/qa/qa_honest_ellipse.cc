@@ -59,7 +59,8 @@ void draw(std::uint64_t seed,
           double altimeter_error_m,
           bool nuisance,
           coverage& c,
-          std::vector<double>& errors)
+          std::vector<double>& errors,
+          std::vector<emitter_location>* fits = nullptr)
 {
     emitter_locator loc(LAMBDA, 600.0, 1.5, 4.0, H + altimeter_error_m, 20.0);
     locator_nuisance nu;
@@ -91,6 +92,8 @@ void draw(std::uint64_t seed,
     const emitter_location l = loc.fit(qx, qy, nuisance);
     if (!l.valid)
         return;
+    if (fits)
+        fits->push_back(l);
     ++c.fixes;
     errors.push_back(std::hypot(-gx - l.east_m, -gy - l.north_m));
     c.in95 += inside(l, -gx, -gy, l.major_m, l.minor_m);
@@ -152,6 +155,50 @@ TEST(honest_ellipse, an_altimeter_unlike_its_prior_is_carried_into_the_ellipse)
     }
     // The evidence also moves the fix toward the right height: a smaller error.
     EXPECT_LT(median(e_honest), 0.6 * median(e_prior));
+}
+
+TEST(honest_ellipse, the_evidence_weights_follow_the_nuisance_flown)
+{
+    // The fix reports how its models shared the evidence. With the altimeter 30 m low
+    // the model at the reading + 30 m holds the true height: the heights off the
+    // reading take most of the weight (0.84 over 20 draws); with the altimeter right,
+    // the reading's own height takes more (0.64). Without the nuisance models both
+    // weights are 0.
+    coverage c;
+    std::vector<double> e;
+    std::vector<emitter_location> low, right, prior;
+    for (int seed = 0; seed < 20; ++seed) {
+        draw(seed, 0.0, 10.0, -30.0, true, c, e, &low);
+        draw(seed, 0.0, 10.0, 0.0, true, c, e, &right);
+        draw(seed, 0.0, 10.0, -30.0, false, c, e, &prior);
+    }
+    ASSERT_EQ(low.size(), 20u);
+    ASSERT_EQ(right.size(), 20u);
+    ASSERT_EQ(prior.size(), 20u);
+    auto mean_off = [](const std::vector<emitter_location>& v) {
+        double s = 0.0;
+        for (const emitter_location& l : v) {
+            EXPECT_GE(l.off_height_weight, 0.0);
+            EXPECT_LE(l.off_height_weight, 1.0 + 1e-12);
+            EXPECT_GE(l.wide_gust_weight, 0.0);
+            EXPECT_LE(l.wide_gust_weight, 1.0 + 1e-12);
+            EXPECT_EQ(l.hypotheses, 9);
+            s += l.off_height_weight;
+        }
+        return s / v.size();
+    };
+    const double off_low = mean_off(low), off_right = mean_off(right);
+    std::printf("weight of the heights off the reading: altimeter 30 m low %.2f, "
+                "right %.2f\n",
+                off_low,
+                off_right);
+    EXPECT_GT(off_low, 0.75); // 2/3 if the evidence told the heights apart no better
+    EXPECT_GT(off_low - off_right, 0.1);
+    for (const emitter_location& l : prior) {
+        EXPECT_EQ(l.hypotheses, 1);
+        EXPECT_EQ(l.wide_gust_weight, 0.0);
+        EXPECT_EQ(l.off_height_weight, 0.0);
+    }
 }
 
 TEST(honest_ellipse, bad_nuisance_settings_are_refused_by_name)

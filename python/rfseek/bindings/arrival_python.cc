@@ -4,7 +4,7 @@
  */
 
 /* BINDTOOL_HEADER_FILE(arrival.h) */
-/* BINDTOOL_HEADER_FILE_HASH(a61ad25bbb51b267cdfdf8c1a2962ad9) */
+/* BINDTOOL_HEADER_FILE_HASH(3de6a494175c2855849e88e55dabf666) */
 
 #include <gr-rfseek/arrival.h>
 #include <pybind11/pybind11.h>
@@ -211,6 +211,13 @@ void bind_emitter_location_class(py::module& m)
         .def_readonly("model_spread_m",
                       &emitter_location::model_spread_m,
                       "RMS distance of the nuisance models' fixes from their mean")
+        .def_readonly("wide_gust_weight",
+                      &emitter_location::wide_gust_weight,
+                      "evidence weight of the wide gust models (0..1)")
+        .def_readonly("off_height_weight",
+                      &emitter_location::off_height_weight,
+                      "evidence weight of the heights the altimeter's error allows "
+                      "(0..1)")
         .def_readonly("gust_rms_mps",
                       &emitter_location::gust_rms_mps,
                       "RMS of the gust states the fit found (m/s per axis)")

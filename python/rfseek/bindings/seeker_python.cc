@@ -4,7 +4,7 @@
  */
 
 /* BINDTOOL_HEADER_FILE(seeker.h) */
-/* BINDTOOL_HEADER_FILE_HASH(1e34a23b29e890211b72ea9f511959b6) */
+/* BINDTOOL_HEADER_FILE_HASH(0f0e36f17ffe3d53c072e506b8dfe27f) */
 
 #include "kwargs.h"
 #include <gr-rfseek/seeker.h>
@@ -50,7 +50,9 @@ void bind_arrival_fields(py::class_<gr::rfseek::seeker_config>& c)
        "back by that rule arrives when the orbits allowed run out if, with "
        "locate_altitude_m >= 50 m, its last two orbits around the estimate swing the "
        "Doppler by less than 2/3 of far_amplitude(), as over the emitter; its fix is "
-       "then published unsure.");
+       "then published unsure. So does a loiter none of whose fits agree (in gusts), "
+       "if the last lay within 4 x this of the estimate: a fit of all the data, within "
+       "600 m, is published unsure.");
     RW(loiter_radius_m, "loiter orbit radius (m), flown to the left");
     RW(loiter_heading_gain,
        "gain in (0, 1] of the alpha-beta filter that smooths the heading read for the "

@@ -283,20 +283,27 @@ private:
         return l;
     }
 
-    // The honest fit of all the data (d_wandering), unsure, when it is valid, agrees
-    // with the altimeter and places the emitter within the locator's search area.
-    bool wandering_fix(double t)
+    /*
+     * The fix of a loiter whose estimate wanders, else an invalid one: not arrived, no
+     * fit held back, the last fit within WANDER_CONFIRMS x arrival_confirm_m of the
+     * estimate, the orbits placing the emitter near; the honest fit of all the data,
+     * unsure, if valid, agreeing with the altimeter and within the search area.
+     */
+    emitter_location wandering_fix(double t) const
     {
+        if (d_status != 0 || d_held.valid || !d_centred || !d_cfg.locate_nuisance ||
+            !(d_last_offset <= WANDER_CONFIRMS * d_cfg.arrival_confirm_m) ||
+            !orbits_place_emitter_near())
+            return emitter_location();
         emitter_location now = d_locator.fit(d_x, d_y, true);
         if (!now.valid || !height_agrees(now) ||
             !(std::hypot(now.east_m, now.north_m) <= SEARCH_RADIUS_M))
-            return false;
+            return emitter_location();
         if (d_cfg.locate_split_gate > 0.0)
             d_locator.check_split(now, d_cfg.locate_split_gate);
         now.unsure = true;
         now.time_s = t;
-        d_wandering = now;
-        return true;
+        return now;
     }
 
     /*
@@ -318,17 +325,15 @@ private:
             d_candidate = d_held;
             d_status = 1;              // arrived now; located with the next slot
             d_pending = unsure_fix(t); // published unsure
-        } else if (d_status == 0 && !d_held.valid && d_centred && d_cfg.locate_nuisance &&
-                   d_last_offset <= WANDER_CONFIRMS * d_cfg.arrival_confirm_m &&
-                   orbits_place_emitter_near() && wandering_fix(t)) {
+        } else if (const emitter_location w = wandering_fix(t); w.valid) {
             // No fit agreed with the estimate orbited: in gusts the estimate wanders
             // more than arrival_confirm_m from fit to fit (the last within
             // WANDER_CONFIRMS x it). But the orbits swing as they do over the emitter
             // and a fit of all the data places it by the vehicle: arrived, that fit
             // published as unsure with its honest ellipse.
-            d_candidate = d_wandering;
+            d_candidate = w;
             d_status = 1;
-            d_pending = d_wandering;
+            d_pending = w;
         } else {
             // No fix: not the emitter's overflight after all, or too poor a geometry:
             // seek again (the strategy resumes where it was), detect anew.
@@ -566,8 +571,7 @@ private:
     // Time, heading, frequency of the usable measurements of the last CENTRED_ORBITS
     // orbits around the estimate (orbits_place_emitter_near()).
     std::deque<std::array<double, 3>> d_centred_orbits;
-    emitter_location d_held;      // the last confirming fit held back by the 600 m rule
-    emitter_location d_wandering; // wandering_fix()
+    emitter_location d_held; // the last confirming fit held back by the 600 m rule
     // How far the last fit around an estimate lay from it (target_offset; m).
     double d_last_offset = std::numeric_limits<double>::infinity();
     heading_filter d_heading_filter; // the heading read, smoothed for dead reckoning

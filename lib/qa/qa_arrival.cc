@@ -585,6 +585,19 @@ TEST(homing_seeker, a_far_overflight_is_confirmed_only_by_the_emitter)
     }
 }
 
+
+// `realistic` with 2.5 m/s gusts of tau_s, flown to a self-declared arrival.
+static scenario gusty_realistic(double tau_s, std::uint64_t seed)
+{
+    scenario sc;
+    sc.apply_preset("realistic");
+    sc.wind_gust_mps = 2.5;
+    sc.wind_gust_tau_s = tau_s;
+    sc.seed = seed;
+    sc.self_arrival = true;
+    return sc;
+}
+
 TEST(homing_seeker, a_fit_whose_height_contradicts_the_altimeter_is_not_trusted)
 {
     // realistic with 2.5 m/s gusts of 5 s, adaptive, seed 72: a gust sets the detector
@@ -596,12 +609,7 @@ TEST(homing_seeker, a_fit_whose_height_contradicts_the_altimeter_is_not_trusted)
     // the one without the near-emitter overflight rule, which starts the later loiter
     // 40 s earlier and changes the rest of the path; with it, below, no arrival is
     // false either.)
-    scenario sc;
-    sc.apply_preset("realistic");
-    sc.wind_gust_mps = 2.5;
-    sc.wind_gust_tau_s = 5.0;
-    sc.seed = 72;
-    sc.self_arrival = true;
+    const scenario sc = gusty_realistic(5.0, 72);
     seeker_config cfg = simulation::seeker_for(sc, "adaptive");
     ASSERT_EQ(cfg.locate_altitude_sigma_m, 20.0);
     const run_result with_rule = simulation(sc, cfg).run(false);
@@ -644,12 +652,7 @@ TEST(homing_seeker, fits_over_the_emitter_pulled_low_by_fast_gusts_are_trusted)
     // Refused by the altimeter's band alone, that loiter found no fix and the run never
     // declared. Only a height as low as a far orbit's swing implies (under 24 m here)
     // is refused now: arrival and a fix in that first loiter, by the emitter.
-    scenario sc;
-    sc.apply_preset("realistic");
-    sc.wind_gust_mps = 2.5;
-    sc.wind_gust_tau_s = 2.0;
-    sc.seed = 5000033;
-    sc.self_arrival = true;
+    const scenario sc = gusty_realistic(2.0, 5000033);
     const seeker_config cfg = simulation::seeker_for(sc, "adaptive");
     const run_result r = simulation(sc, cfg).run(true);
     const auto [loiter, loiter_end] = first_loiter(r);
@@ -734,12 +737,7 @@ TEST(homing_seeker,
     // ellipse, which holds the emitter. Without the far check (arrival_far_amplitude
     // 0) nothing tells those orbits from a far one's: the vehicle seeks on, loiter
     // after loiter, and never arrives within the flight cap.
-    scenario sc;
-    sc.apply_preset("realistic");
-    sc.wind_gust_mps = 2.5;
-    sc.wind_gust_tau_s = 30.0;
-    sc.seed = 5000081;
-    sc.self_arrival = true;
+    const scenario sc = gusty_realistic(30.0, 5000081);
     seeker_config cfg = simulation::seeker_for(sc, "adaptive");
     const run_result r = simulation(sc, cfg).run(true);
     const auto [loiter, loiter_end] = first_loiter(r);

@@ -4,14 +4,17 @@
  * SPDX-License-Identifier: GPL-3.0-or-later
  *
  * arrival_math: the robust statistics and linear solves of the overflight detector and
- * the emitter locator (Eigen). Internal to the library.
+ * the emitter locator (Eigen), and the sizes of a fix's ellipses. Internal to the
+ * library.
  */
 
 #ifndef INCLUDED_RFSEEK_ARRIVAL_MATH_H
 #define INCLUDED_RFSEEK_ARRIVAL_MATH_H
 
 #include <Eigen/Dense>
+#include <gr-rfseek/arrival.h>
 #include <algorithm>
+#include <cmath>
 #include <vector>
 
 namespace gr {
@@ -51,6 +54,35 @@ inline bool solve_ridged(Eigen::MatrixXd n, Eigen::MatrixXd& b)
     const double scale = std::max(n.diagonal().maxCoeff(), 0.0);
     n.diagonal().array() += 1e-9 * scale + 1e-12;
     return lu_solve(n, b);
+}
+
+//! An ellipse's semi-axes scaled, direction and aspect kept, to the geometric mean
+//! size_m if larger (non-finite or degenerate axes are left as they are).
+inline void cap_ellipse_size(double& major_m, double& minor_m, double size_m)
+{
+    const double g = std::sqrt(major_m * minor_m);
+    if (g > size_m && std::isfinite(g)) {
+        major_m *= size_m / g;
+        minor_m *= size_m / g;
+    }
+}
+
+//! An earlier fix l carried to time t, unsure: in the dead-reckoned (air) frame the
+//! emitter drifts with minus the wind, whose uncertainty grows the ellipses.
+inline emitter_location carried_fix(emitter_location l, double t)
+{
+    const double dt = std::max(t - l.time_s, 0.0);
+    l.east_m -= l.wind_east_mps * dt;
+    l.north_m -= l.wind_north_mps * dt;
+    const double s2 = std::pow(l.wind_sigma_mps * dt, 2);
+    const double chi2_95 = 5.991464547107979, chi2_50 = 1.3862943611198906;
+    l.major_m = std::sqrt(l.major_m * l.major_m + chi2_95 * s2);
+    l.minor_m = std::sqrt(l.minor_m * l.minor_m + chi2_95 * s2);
+    l.major50_m = std::sqrt(l.major50_m * l.major50_m + chi2_50 * s2);
+    l.minor50_m = std::sqrt(l.minor50_m * l.minor50_m + chi2_50 * s2);
+    l.time_s = t;
+    l.unsure = true;
+    return l;
 }
 
 } // namespace rfseek

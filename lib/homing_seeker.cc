@@ -25,6 +25,7 @@
  */
 
 #include "angle.h"
+#include "arrival_math.h"
 #include "heading_filter.h"
 #include "strategies.h"
 #include <gr-rfseek/arrival.h>
@@ -249,30 +250,12 @@ private:
         return std::max(0.0, r - d_cfg.loiter_radius_m) / d_cfg.speed_mps;
     }
 
-    // An earlier fix l carried to time t, unsure: in the dead-reckoned (air) frame the
-    // emitter drifts with minus the wind, whose uncertainty grows the ellipses.
-    static emitter_location carried(emitter_location l, double t)
-    {
-        const double dt = std::max(t - l.time_s, 0.0);
-        l.east_m -= l.wind_east_mps * dt;
-        l.north_m -= l.wind_north_mps * dt;
-        const double s2 = std::pow(l.wind_sigma_mps * dt, 2);
-        const double chi2_95 = 5.991464547107979, chi2_50 = 1.3862943611198906;
-        l.major_m = std::sqrt(l.major_m * l.major_m + chi2_95 * s2);
-        l.minor_m = std::sqrt(l.minor_m * l.minor_m + chi2_95 * s2);
-        l.major50_m = std::sqrt(l.major50_m * l.major50_m + chi2_50 * s2);
-        l.minor50_m = std::sqrt(l.minor50_m * l.minor50_m + chi2_50 * s2);
-        l.time_s = t;
-        l.unsure = true;
-        return l;
-    }
-
     // The unsure fix at time t: the first confirmed fit carried to t, or a fit of
     // everything now, whichever has the smaller 95 % ellipse (the carried fit's grows
     // with the wind's uncertainty; a fit over more data drifts with the gusts).
     emitter_location unsure_fix(double t) const
     {
-        emitter_location l = carried(d_candidate, t);
+        emitter_location l = carried_fix(d_candidate, t);
         emitter_location now = d_locator.fit(d_x, d_y, d_cfg.locate_nuisance);
         if (now.valid && height_agrees(now) && d_cfg.locate_split_gate > 0.0)
             d_locator.check_split(now, d_cfg.locate_split_gate);
@@ -301,7 +284,14 @@ private:
             return emitter_location();
         if (d_cfg.locate_split_gate > 0.0)
             d_locator.check_split(now, d_cfg.locate_split_gate);
+        // Sized as such fits err (WANDER_RADII_M), in proportion to a wider orbit.
+        const double k =
+            std::max(1.0, d_cfg.loiter_radius_m / seeker_config().loiter_radius_m);
+        const auto& r = locator_nuisance::WANDER_RADII_M;
+        cap_ellipse_size(now.major_m, now.minor_m, r[0] * k);
+        cap_ellipse_size(now.major50_m, now.minor50_m, r[1] * k);
         now.unsure = true;
+        now.wandered = true;
         now.time_s = t;
         return now;
     }

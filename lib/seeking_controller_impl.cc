@@ -401,6 +401,7 @@ void seeking_controller_impl::publish_status(const command& c, double time_s)
         add("major50_m", l.major50_m);
         add("minor50_m", l.minor50_m);
         s = pmt::dict_add(s, pmt::mp("unsure"), pmt::from_bool(l.unsure));
+        s = pmt::dict_add(s, pmt::mp("wandered"), pmt::from_bool(l.wandered));
     }
     message_port_pub(d_port_status, s);
 }

@@ -31,6 +31,7 @@ import argparse
 import json
 import math
 import os
+import re
 import shutil
 import subprocess
 import sys
@@ -122,6 +123,8 @@ def study(a):
     print("| --- | --- | --- | --- | --- | --- | --- | --- |")
     rows = []
     for i, (name, cell) in enumerate(DESIGN):
+        if not re.search(a.cells, name):
+            continue
         out = os.path.join(a.out, "cell%02d.json" % i)
         cmd = [a.mc, "--runs", str(a.runs), "--seed", str(a.seed), "--preset",
                preset(cell), "--strategy", "adaptive", "--arrival", "self", "--quiet",
@@ -205,7 +208,17 @@ def _calibration_run(job):
     # user's scale95 is 1 here): u^2 + v^2 <= 1 inside.
     wind = math.hypot(loc.wind_east_mps, loc.wind_north_mps) / sc.speed_mps
     k95 = rfseek.locator_nuisance.factors(loc.gust_rms_mps, wind, loc.altitude_m)[0]
+    # A wandering loiter's fix: its error in the metric of an ellipse of its
+    # direction and aspect whose semi-axes' geometric mean is 1 m, over the orbit's
+    # scale (locator_nuisance::WANDER_RADII_M).
+    wdist = None
+    if loc.wandered:
+        radius = rfseek.simulation.seeker_for(sc, "adaptive").loiter_radius_m
+        aspect = math.sqrt(loc.minor_m / loc.major_m)
+        wdist = math.hypot((ex * ca + ey * sa) * aspect, (-ex * sa + ey * ca) / aspect) \
+            / max(1.0, radius / rfseek.seeker_config().loiter_radius_m)
     return {"cell": name, "nees95": (u * u + v * v) * k95 * k95,
+            "wandered": loc.wandered, "wdist": wdist, "in95": u * u + v * v <= 1.0,
             "gust_rms": loc.gust_rms_mps, "wind": wind,
             "major": loc.major_m, "minor": loc.minor_m, "T": loc.consistency,
             "spread": loc.model_spread_m, "rms": loc.rms_hz, "alt": loc.altitude_m,
@@ -221,7 +234,8 @@ def calibrate(a):
             res = json.load(f)
     else:
         jobs = [(n, c, a.seed + 1000 * i + k, a.set)
-                for i, (n, c) in enumerate(DESIGN) for k in range(a.runs)]
+                for i, (n, c) in enumerate(DESIGN) if re.search(a.cells, n)
+                for k in range(a.runs)]
         with multiprocessing.Pool(a.threads or os.cpu_count()) as p:
             res = [r for r in p.map(_calibration_run, jobs, chunksize=4) if r]
     if a.json and not a.from_json:
@@ -243,6 +257,11 @@ def calibrate(a):
     print("| --- | --- | --- | --- | --- | --- | --- | --- |")
     # Rows: one per wind bin for the fits that are not low; then one for the low fits
     # (under --low-height, gusts from the first edge, wind from --low-wind).
+    # The fixes of loiters whose estimate wandered take sizes of their own
+    # (locator_nuisance::WANDER_RADII_M); the bins leave them out.
+    wand = [r for r in res if r.get("wandered")]
+    res = [r for r in res if not r.get("wandered")]
+
     def low(r):
         return (r["alt"] < a.low_height and r["gust_rms"] >= gust_edges[0]
                 and r["wind"] >= a.low_wind)
@@ -281,6 +300,13 @@ def calibrate(a):
         [[round(v, 2) for v in r] for r in table95],
         [[round(v, 2) for v in r] for r in table50],
         ", ".join(label + (" wind %.2f-" % wlo) for label, wlo, _, _ in rows)))
+    if wand:
+        q = sorted(r["wdist"] for r in wand)
+        at = lambda p: q[min(len(q) - 1, int(p * len(q)))]
+        print("\nwandering loiters' fixes: %d, in their 95 %% ellipse %.1f %%; "
+              "WANDER_RADII_M (C++) = [%.1f, %.1f] (quantiles 0.94 and 0.5)" % (
+                  len(wand), 100.0 * sum(r["in95"] for r in wand) / len(wand),
+                  at(0.94), at(0.5)))
     print("(lib/emitter_locator.cc keeps the strong-wind row's earlier factors, which "
           "rest on more fixes; docs/notes/seeker.md, \"Low in the wind\")")
     return 0
@@ -296,6 +322,9 @@ def main(argv):
     p.add_argument("--seed", type=int, default=5000001, help="first seed")
     p.add_argument("--set", action="append", default=[], help="KEY=VALUE, as the Monte "
                    "Carlo's (e.g. locate_nuisance=false)")
+    p.add_argument("--cells", default="",
+                   help="only the cells whose name matches this regular expression "
+                        "(e.g. 'gust 2.5|windy'; seeds as with all cells)")
     p.add_argument("--threads", type=int, default=0)
     p.add_argument("--out", default="locator_envelope", help="folder for the JSON files")
     p.add_argument("--json", default=None, help="also write the results to this file")
@@ -319,6 +348,12 @@ def main(argv):
     p.add_argument("--from-json", default=None,
                    help="--calibrate: tabulate the runs of an earlier --json file")
     a = p.parse_args(argv)
+    try:
+        re.compile(a.cells)
+    except re.error as e:
+        p.error("--cells: not a regular expression (%s)" % e)
+    if not any(re.search(a.cells, n) for n, _ in DESIGN):
+        p.error("--cells %r matches no cell" % a.cells)
     if a.runs < 1:
         p.error("--runs must be >= 1")
     for s in a.set:

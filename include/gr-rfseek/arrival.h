@@ -201,6 +201,10 @@ struct RFSEEK_API emitter_location {
     //! Published although its 95 % ellipse is larger than the seeker's limit
     //! (locate_max_axis_m): the loiter's budget ran out. The ellipse is still honest.
     bool unsure = false;
+    //! The fix of a loiter whose estimate wandered (strong gusts: no fit confirmed the
+    //! estimate orbited): a fit of all the loiter's data, published unsure, its
+    //! ellipses sized by locator_nuisance::WANDER_RADII_M (when calibrated).
+    bool wandered = false;
 };
 
 /*!
@@ -237,6 +241,14 @@ struct RFSEEK_API locator_nuisance {
     //! ellipse says (up to 12 x the radius in moderate gusts).
     static constexpr double LOW_HEIGHT_M = 70.0;
     static constexpr double LOW_WIND_FRACTION = 0.2;
+    //! The sizes {95 %, 50 %} of the ellipses of a loiter whose estimate wandered
+    //! (emitter_location::wandered; m, the geometric mean of the semi-axes, at the
+    //! default 25 m orbit and in proportion for wider ones). Such a fit of several
+    //! orbits' data errs by tens of metres whatever its covariance says (kilometres
+    //! there, little correlated with the error): the seeker keeps the ellipse's
+    //! direction and aspect (along the major axis the error is about twice that
+    //! along the minor) and gives it this size, unless its own is smaller.
+    static constexpr std::array<double, 2> WANDER_RADII_M{ { 63.0, 15.0 } };
     //! The calibrated radius factors {95 %, 50 %} of a fix whose fit found this gust
     //! level (emitter_location::gust_rms_mps), mean wind |w| / airspeed_mps and height
     //! (emitter_location::altitude_m; the default: not low); applied when calibrated,

@@ -644,6 +644,18 @@ static std::pair<const slot_record*, double> first_loiter(const run_result& r)
     return { start, r.records.empty() ? 0.0 : r.records.back().time_s };
 }
 
+// Without the far check (arrival_far_amplitude 0) nothing tells a loiter over the
+// emitter whose orbits swing little from a false overflight's: its first loiter seeks
+// on without arriving (a later one may arrive; in these gusts where is chaotic).
+static void expect_no_arrival_in_first_loiter(const scenario& sc,
+                                              const seeker_config& cfg)
+{
+    const run_result blind = simulation(sc, cfg).run(true);
+    const auto [loiter, loiter_end] = first_loiter(blind);
+    ASSERT_TRUE(loiter);
+    EXPECT_TRUE(!blind.summary.declared || blind.summary.arrival_time_s > loiter_end);
+}
+
 TEST(homing_seeker, fits_over_the_emitter_pulled_low_by_fast_gusts_are_trusted)
 {
     // realistic with 2.5 m/s gusts of 2 s, seed 5000033: the first loiter starts 37 m
@@ -706,23 +718,28 @@ TEST(homing_seeker, a_loiter_held_by_its_wide_ellipse_arrives_unsure_over_the_em
     // unsure with that wide ellipse, which holds the emitter. Without the far check
     // (arrival_far_amplitude 0) nothing tells that loiter from a false overflight:
     // the vehicle seeks on and never arrives within the flight cap.
+    // The flight is chaotic in these gusts: the FFT's rounding differs between CPUs
+    // (FFTW's codelets), and on some the same loiter's fits wander instead, so that
+    // it arrives by the wandering rule (below); either way it arrives unsure over the
+    // emitter, and not without the far check.
     scenario sc;
     sc.apply_preset("windy");
     sc.seed = 5000023;
     sc.self_arrival = true;
     seeker_config cfg = simulation::seeker_for(sc, "adaptive");
-    const run_summary held = simulation(sc, cfg).run().summary;
+    const run_result r = simulation(sc, cfg).run(true);
+    const run_summary& held = r.summary;
     ASSERT_TRUE(held.declared);
+    EXPECT_LE(held.arrival_time_s, first_loiter(r).second);
     EXPECT_LT(held.arrival_detect_distance_m, 300.0);
     ASSERT_TRUE(held.located);
     EXPECT_TRUE(held.location_unsure);
-    EXPECT_GT(held.location_major_m, 600.0); // held back by the rule, then published
+    if (!r.location.wandered)
+        EXPECT_GT(held.location_major_m, 600.0); // held back by the rule, then published
     EXPECT_TRUE(held.location_in_ellipse);
     EXPECT_LT(held.location_error_m, 100.0);
     cfg.arrival_far_amplitude = 0.0;
-    const run_summary blind = simulation(sc, cfg).run().summary;
-    EXPECT_FALSE(blind.declared);
-    EXPECT_FALSE(blind.located);
+    expect_no_arrival_in_first_loiter(sc, cfg);
 }
 
 TEST(homing_seeker,
@@ -749,13 +766,20 @@ TEST(homing_seeker,
     EXPECT_LT(r.summary.arrival_detect_distance_m, 300.0);
     ASSERT_TRUE(r.summary.located);
     EXPECT_TRUE(r.summary.location_unsure);
-    EXPECT_GT(r.summary.location_major_m, cfg.locate_max_axis_m);
+    // Its covariance says kilometres (the strong gusts' calibrated factors); it is
+    // sized as such fits err (locator_nuisance::WANDER_RADII_M), direction and aspect
+    // kept: the 95 % and 50 % ellipses are similar.
+    const emitter_location& l = r.location;
+    EXPECT_TRUE(l.wandered);
+    const auto& size = locator_nuisance::WANDER_RADII_M;
+    EXPECT_NEAR(std::sqrt(l.major_m * l.minor_m), size[0], 1e-6 * size[0]);
+    EXPECT_NEAR(std::sqrt(l.major50_m * l.minor50_m), size[1], 1e-6 * size[1]);
+    EXPECT_NEAR(
+        l.major50_m / l.minor50_m, l.major_m / l.minor_m, 1e-9 * l.major_m / l.minor_m);
     EXPECT_TRUE(r.summary.location_in_ellipse);
     EXPECT_LT(r.summary.location_error_m, 50.0);
     cfg.arrival_far_amplitude = 0.0;
-    const run_summary blind = simulation(sc, cfg).run().summary;
-    EXPECT_FALSE(blind.declared);
-    EXPECT_FALSE(blind.located);
+    expect_no_arrival_in_first_loiter(sc, cfg);
 }
 
 TEST(homing_seeker, without_a_confirmed_fit_seeks_again_or_gives_up)

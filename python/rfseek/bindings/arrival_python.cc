@@ -4,7 +4,7 @@
  */
 
 /* BINDTOOL_HEADER_FILE(arrival.h) */
-/* BINDTOOL_HEADER_FILE_HASH(3de6a494175c2855849e88e55dabf666) */
+/* BINDTOOL_HEADER_FILE_HASH(9c5e126c6f7ec85fbd971774a99e4aa4) */
 
 #include <gr-rfseek/arrival.h>
 #include <pybind11/pybind11.h>
@@ -225,6 +225,12 @@ void bind_emitter_location_class(py::module& m)
                       &emitter_location::unsure,
                       "published with a 95 % ellipse larger than the seeker's limit "
                       "(locate_max_axis_m) when the loiter's budget ran out")
+        .def_readonly(
+            "wandered",
+            &emitter_location::wandered,
+            "the fix of a loiter whose estimate wandered (strong gusts): a "
+            "fit of all the loiter's data, published unsure, its ellipses sized "
+            "by locator_nuisance.wander_radii_m()")
         .def("__repr__", [](const emitter_location& l) {
             if (!l.valid)
                 return std::string("emitter_location(no fix)");
@@ -272,6 +278,17 @@ void bind_locator_nuisance_class(py::module& m)
         .def_readwrite("scale50",
                        &locator_nuisance::scale50,
                        "the user's radius factor of the 50 % ellipse (0.1..10)")
+        .def_static(
+            "wander_radii_m",
+            []() {
+                const auto& k = locator_nuisance::WANDER_RADII_M;
+                return std::vector<double>{ k[0], k[1] };
+            },
+            "The sizes [95 %, 50 %] (m, geometric mean of the semi-axes, at the "
+            "default 25 m orbit and in proportion for wider ones) the seeker gives "
+            "the ellipses of a loiter whose estimate wandered (emitter_location."
+            "wandered), their direction and aspect kept, unless their own are "
+            "smaller (WANDER_RADII_M in C++)")
         .def_static("factors",
                     &locator_nuisance::factors,
                     py::arg("gust_rms_mps"),

@@ -268,10 +268,13 @@ class qa_montecarlo(gr_unittest.TestCase):
         self.assertAlmostEqual(s["located_sure_rate"], (len(fixes) - unsure) / len(rows))
         self.assertAlmostEqual(s["location_in_ellipse50_rate"],
                                sum(r["location_in_ellipse50"] for r in fixes) / len(fixes))
-        # Unsure fixes are those whose 95 % ellipse exceeds the limit (100 m).
+        # Unsure fixes are those whose 95 % ellipse exceeds the limit (100 m), or a
+        # wandering loiter's, never confirmed: sized as such fixes err, its semi-axes'
+        # geometric mean 63 m (locator_nuisance.wander_radii_m()), so its semi-major
+        # axis at least that.
         for r in fixes:
             if r["location_unsure"]:
-                self.assertGreater(r["location_major_m"], 100.0)
+                self.assertGreaterEqual(r["location_major_m"], 63.0)
 
     def test_rows_do_not_depend_on_thread_count(self):
         args = ["--runs", "6", "--seed", "11", "--strategy", "paper,rss_baseline",

@@ -317,8 +317,8 @@ radius_factors ellipse_scale(double gust_rms_mps, double wind_fraction, double h
 {
     static constexpr std::array<double, 3> gust_edge{ { 0.55, 0.9, 1.2 } };
     static constexpr double wind_edge = 0.52;
-    // Rows: light wind, strong wind, low in the wind (gust bins 1-3; bin 0 keeps its
-    // row).
+    // Rows: light wind, strong wind, low in the wind (its first bin the strong
+    // wind's, as few fixes fall there).
     static constexpr double f95[3][4] = { { 0.80, 1.13, 2.08, 11.82 },
                                           { 3.35, 3.65, 6.07, 39.04 },
                                           { 3.35, 12.26, 12.26, 57.76 } };
@@ -331,7 +331,9 @@ radius_factors ellipse_scale(double gust_rms_mps, double wind_fraction, double h
     // Unknown (NaN) counts as the worst: strong wind, low (a NaN gust level already
     // falls in the top bin).
     std::size_t j = !(wind_fraction < wind_edge) ? 1 : 0;
-    if (i > 0 && !(height_m >= locator_nuisance::LOW_HEIGHT_M) &&
+    // Low in the wind whatever gusts the fit found: there a fit that found little
+    // (under 0.55 m/s) in 2.5 m/s gusts erred by up to 3 x its light-wind radius.
+    if (!(height_m >= locator_nuisance::LOW_HEIGHT_M) &&
         !(wind_fraction < locator_nuisance::LOW_WIND_FRACTION))
         j = 2;
     return { f95[j][i], f50[j][i] };

@@ -234,11 +234,11 @@ struct RFSEEK_API locator_nuisance {
     double airspeed_mps = 10.0;
     static constexpr double GUST_WIDE_MPS = 3.0;
     static constexpr std::array<double, 2> GUST_TAUS_S{ { 15.0, 60.0 } };
-    //! Fits under LOW_HEIGHT_M (emitter_location::altitude_m, m) that found gusts
-    //! (gust_rms_mps >= 0.55 m/s) and a mean wind of at least LOW_WIND_FRACTION of
-    //! the airspeed take the low factors: low over the emitter in the wind a fix's
-    //! error follows the gusts' drift and the compass far more than its Gaussian
-    //! ellipse says (up to 12 x the radius in moderate gusts).
+    //! Fits under LOW_HEIGHT_M (emitter_location::altitude_m, m) in a mean wind of
+    //! at least LOW_WIND_FRACTION of the airspeed take the low factors, whatever
+    //! gusts they found: low over the emitter in the wind a fix's error follows the
+    //! gusts' drift and the compass far more than its Gaussian ellipse says (up to
+    //! 12 x the radius in moderate gusts; up to 3 x where the fit found little).
     static constexpr double LOW_HEIGHT_M = 70.0;
     static constexpr double LOW_WIND_FRACTION = 0.2;
     //! The sizes {95 %, 50 %} of the ellipses of a loiter whose estimate wandered

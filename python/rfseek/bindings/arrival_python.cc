@@ -4,7 +4,7 @@
  */
 
 /* BINDTOOL_HEADER_FILE(arrival.h) */
-/* BINDTOOL_HEADER_FILE_HASH(9c5e126c6f7ec85fbd971774a99e4aa4) */
+/* BINDTOOL_HEADER_FILE_HASH(cff872ade0a7ea27d2b7ea2aa7b47e89) */
 
 #include <gr-rfseek/arrival.h>
 #include <pybind11/pybind11.h>
@@ -299,9 +299,9 @@ void bind_locator_nuisance_class(py::module& m)
                     "wind |wind| / airspeed_mps and height (emitter_location."
                     "altitude_m; default: not low); applied when calibrated is True, "
                     "before the user's scale95 and scale50. Fits under 70 m "
-                    "(LOW_HEIGHT_M in C++) that found gusts (0.55 m/s or more) in a "
-                    "mean wind of at least 0.2 of the airspeed (LOW_WIND_FRACTION) "
-                    "take the low factors. Never smaller in stronger gusts or wind, "
+                    "(LOW_HEIGHT_M in C++) in a mean wind of at least 0.2 of the "
+                    "airspeed (LOW_WIND_FRACTION) take the low factors, whatever "
+                    "gusts they found. Never smaller in stronger gusts or wind, "
                     "or lower down; NaN counts as the worst (strongest, lowest).");
 }
 

@@ -195,7 +195,8 @@ def _calibration_run(job):
         sc.set(k, v)
     sc.seed = seed
     sc.self_arrival = True
-    r = rfseek.simulation(sc, rfseek.simulation.seeker_for(sc, "adaptive")).run()
+    cfg = rfseek.simulation.seeker_for(sc, "adaptive")
+    r = rfseek.simulation(sc, cfg).run()
     loc = r.location
     if not r.summary.located:
         return None
@@ -213,7 +214,7 @@ def _calibration_run(job):
     # scale (locator_nuisance::WANDER_RADII_M).
     wdist = None
     if loc.wandered:
-        radius = rfseek.simulation.seeker_for(sc, "adaptive").loiter_radius_m
+        radius = cfg.loiter_radius_m
         aspect = math.sqrt(loc.minor_m / loc.major_m)
         wdist = math.hypot((ex * ca + ey * sa) * aspect, (-ex * sa + ey * ca) / aspect) \
             / max(1.0, radius / rfseek.seeker_config().loiter_radius_m)

@@ -257,15 +257,14 @@ def calibrate(a):
           "| factor 95 % | factor 50 % |")
     print("| --- | --- | --- | --- | --- | --- | --- | --- |")
     # Rows: one per wind bin for the fits that are not low; then one for the low fits
-    # (under --low-height, gusts from the first edge, wind from --low-wind).
+    # (under --low-height, wind from --low-wind, whatever the gust level).
     # The fixes of loiters whose estimate wandered take sizes of their own
     # (locator_nuisance::WANDER_RADII_M); the bins leave them out.
     wand = [r for r in res if r.get("wandered")]
     res = [r for r in res if not r.get("wandered")]
 
     def low(r):
-        return (r["alt"] < a.low_height and r["gust_rms"] >= gust_edges[0]
-                and r["wind"] >= a.low_wind)
+        return r["alt"] < a.low_height and r["wind"] >= a.low_wind
 
     rows = [("not low", wlo, whi,
              lambda r, wlo=wlo, whi=whi: not low(r) and wlo <= r["wind"] < whi)

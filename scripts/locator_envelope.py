@@ -340,8 +340,8 @@ def main(argv):
     p.add_argument("--wind-bins", default="0.52",
                    help="--calibrate: bin edges of the fitted wind over the airspeed")
     p.add_argument("--low-height", type=float, default=70.0,
-                   help="--calibrate: fits under this height (m) that found gusts get "
-                   "a row of their own (LOW_HEIGHT_M in C++, 70)")
+                   help="--calibrate: fits under this height (m) get a row of their "
+                   "own (LOW_HEIGHT_M in C++, 70)")
     p.add_argument("--low-wind", type=float, default=0.2,
                    help="--calibrate: ... and a wind of at least this fraction of the "
                    "airspeed (LOW_WIND_FRACTION in C++, 0.2)")

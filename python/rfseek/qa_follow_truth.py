@@ -82,9 +82,14 @@ class qa_follow_truth(gr_unittest.TestCase):
                 src.to_basic_block()._post(pmt.intern("truth"), pmt.to_pmt(t))
             span = sequence[-1]["time"] - sequence[0]["time"]
             expected = int(span / sc.slot_period_s + 1e-9) + 1
-            # The estimator and the sample sink run in their own threads: wait for both.
+            # The estimator and the sample sink run in their own threads: wait for both,
+            # and for the source to have handled every message posted (the late one
+            # can come after the last beacon it makes).
+            posted = len(junk) + len(sequence) + len(late)
             self.assertTrue(wait_until(lambda: meas.num_messages() >= expected
-                                       and len(beacon_tags(samples)) >= expected))
+                                       and len(beacon_tags(samples)) >= expected
+                                       and src.truth_count() + src.truth_dropped_count()
+                                       >= posted))
         finally:
             tb.stop()
             tb.wait()

@@ -80,6 +80,8 @@ public:
         locator_nuisance nu;
         nu.altimeter_m = cfg.locate_altimeter_range_m;
         nu.airspeed_mps = cfg.speed_mps;
+        nu.scale95 = cfg.locate_scale95;
+        nu.scale50 = cfg.locate_scale50;
         d_locator.set_nuisance(nu);
     }
 
@@ -284,12 +286,13 @@ private:
             return emitter_location();
         if (d_cfg.locate_split_gate > 0.0)
             d_locator.check_split(now, d_cfg.locate_split_gate);
-        // Sized as such fits err (WANDER_RADII_M), in proportion to a wider orbit.
+        // Sized as such fits err (WANDER_RADII_M), in proportion to a wider orbit, times
+        // the user's factors.
         const double k =
             std::max(1.0, d_cfg.loiter_radius_m / seeker_config().loiter_radius_m);
         const auto& r = locator_nuisance::WANDER_RADII_M;
-        cap_ellipse_size(now.major_m, now.minor_m, r[0] * k);
-        cap_ellipse_size(now.major50_m, now.minor50_m, r[1] * k);
+        cap_ellipse_size(now.major_m, now.minor_m, r[0] * k * d_cfg.locate_scale95);
+        cap_ellipse_size(now.major50_m, now.minor50_m, r[1] * k * d_cfg.locate_scale50);
         now.unsure = true;
         now.wandered = true;
         now.time_s = t;

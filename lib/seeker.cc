@@ -186,6 +186,10 @@ void validate_arrival(const seeker_config& c)
         bad("locate_split_gate", c.locate_split_gate, "0 (off) or in (0, 1e6]");
     if (!(c.locate_altimeter_range_m >= 0.0 && c.locate_altimeter_range_m <= 1000.0))
         bad("locate_altimeter_range_m", c.locate_altimeter_range_m, "in [0, 1000] m");
+    if (!(c.locate_scale95 >= 0.1 && c.locate_scale95 <= 10.0))
+        bad("locate_scale95", c.locate_scale95, "in [0.1, 10] (1: as calibrated)");
+    if (!(c.locate_scale50 >= 0.1 && c.locate_scale50 <= 10.0))
+        bad("locate_scale50", c.locate_scale50, "in [0.1, 10] (1: as calibrated)");
     if (!std::isnan(c.locate_altitude_m) &&
         !(c.locate_altitude_m >= 0.0 && c.locate_altitude_m <= 1e4))
         bad("locate_altitude_m", c.locate_altitude_m, "in [0, 1e4] m, or NaN (unknown)");
@@ -338,6 +342,8 @@ std::vector<std::string> seeker_config::keys()
              "locate_split_gate",
              "locate_nuisance",
              "locate_altimeter_range_m",
+             "locate_scale95",
+             "locate_scale50",
              "locate_altitude_m",
              "locate_altitude_sigma_m" };
 }
@@ -439,6 +445,8 @@ const std::map<std::string, seeker_setting>& settings()
         RFSEEK_SETTING(locate_split_gate, locate_split_gate, real),
         RFSEEK_SETTING(locate_nuisance, locate_nuisance, boolean),
         RFSEEK_SETTING(locate_altimeter_range_m, locate_altimeter_range_m, real),
+        RFSEEK_SETTING(locate_scale95, locate_scale95, real),
+        RFSEEK_SETTING(locate_scale50, locate_scale50, real),
         RFSEEK_SETTING(locate_altitude_m, locate_altitude_m, real),
         RFSEEK_SETTING(locate_altitude_sigma_m, locate_altitude_sigma_m, real),
     };

@@ -181,6 +181,13 @@ struct RFSEEK_API seeker_config {
     //! (docs/seeker.md, "How honest the ellipse is"); false: the prior's fit alone.
     bool locate_nuisance = true;
     double locate_altimeter_range_m = 30.0; //!< altimeter error carried (m, 0..1000)
+    //! The user's own factors on the radii of the honest 95 % and 50 % ellipses
+    //! (locator_nuisance::scale95, scale50; 0.1..10), on top of the calibrated ones:
+    //! above 1 for a day known to be rougher than the calibration's envelope (slow
+    //! strong gusts with the altimeter off: docs/seeker.md, "How honest the ellipse
+    //! is"). The wider ellipse also decides sure or unsure (locate_max_axis_m).
+    double locate_scale95 = 1.0;
+    double locate_scale50 = 1.0;
     //! The vehicle's height above the ground the emitter stands on, as its altimeter /
     //! autopilot holds it (m; NaN: unknown): the location fit's prior on the height,
     //! with std locate_altitude_sigma_m, the altimeter's stated accuracy (m; 0: the

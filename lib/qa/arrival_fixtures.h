@@ -12,6 +12,8 @@
 #include <gr-rfseek/arrival.h>
 #include <gr-rfseek/rng.h>
 #include <gr-rfseek/scenario.h>
+#include <gr-rfseek/seeker.h>
+#include <gr-rfseek/simulation.h>
 #include <cmath>
 #include <utility>
 
@@ -69,6 +71,20 @@ pass_result fly_pass(overflight_detector& d,
         }
     }
     return out;
+}
+
+// A `realistic` flight of `adaptive` that arrives and locates by itself, with no limit
+// on the ellipse: a wider ellipse then changes nothing but itself (the fix is sure, the
+// flight the same). Run it with simulation(f.first, f.second).run(false).
+inline std::pair<scenario, seeker_config> unlimited_fix_flight(std::uint64_t seed)
+{
+    scenario sc;
+    sc.apply_preset("realistic");
+    sc.seed = seed;
+    sc.self_arrival = true;
+    seeker_config cfg = simulation::seeker_for(sc, "adaptive");
+    cfg.locate_max_axis_m = 1e6;
+    return { sc, cfg };
 }
 
 } // namespace qa

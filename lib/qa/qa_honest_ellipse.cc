@@ -6,8 +6,9 @@
  * locator_nuisance): synthetic orbits flown through gusts and with an altimeter unlike
  * the locator's priors; over 200 draws (40 under AddressSanitizer) the 95 % and 50 %
  * ellipses hold the emitter at their rates, where the prior's own ellipse does not. Bad
- * settings are refused by name. (The calibrated factors are checked in closed loop:
- * qa_montecarlo.)
+ * settings are refused by name. The user's factors (seeker_config::locate_scale95,
+ * locate_scale50) scale the closed loop's published ellipses and nothing else. (The
+ * calibrated factors are checked in closed loop: qa_montecarlo.)
  */
 
 #include "arrival_fixtures.h"
@@ -219,6 +220,48 @@ TEST(honest_ellipse, bad_nuisance_settings_are_refused_by_name)
     n.scale50 = 20.0;
     EXPECT_THROW(loc.set_nuisance(n), std::invalid_argument);
     EXPECT_DOUBLE_EQ(loc.nuisance().altimeter_m, 30.0); // unchanged by the refusals
+}
+
+TEST(honest_ellipse, the_users_factors_scale_the_published_ellipses_only)
+{
+    // The same flight with locate_scale95 = 2 and locate_scale50 = 0.5 publishes the
+    // same fix, its 95 % semi-axes twice and its 50 % ones half as long. (A wider
+    // ellipse also decides sure or unsure: with no limit on it, the flights are the
+    // same. The split check's growth is a factor too, so the ratio holds with it.)
+    for (std::uint64_t seed : { 5, 6 }) {
+        auto [sc, cfg] = unlimited_fix_flight(seed);
+        const run_result one = simulation(sc, cfg).run(false);
+        cfg.locate_scale95 = 2.0;
+        cfg.locate_scale50 = 0.5;
+        const run_result scaled = simulation(sc, cfg).run(false);
+        ASSERT_TRUE(one.summary.located && scaled.summary.located) << seed;
+        ASSERT_LT(2.0 * one.location.major_m, 600.0) << seed; // under the 600 m rule
+        EXPECT_EQ(scaled.location.east_m, one.location.east_m) << seed;
+        EXPECT_EQ(scaled.location.north_m, one.location.north_m) << seed;
+        EXPECT_EQ(scaled.summary.location_error_m, one.summary.location_error_m);
+        EXPECT_EQ(scaled.summary.distance_m, one.summary.distance_m);
+        EXPECT_NEAR(scaled.location.major_m, 2.0 * one.location.major_m, 1e-9 * 600.0);
+        EXPECT_NEAR(scaled.location.minor_m, 2.0 * one.location.minor_m, 1e-9 * 600.0);
+        EXPECT_NEAR(
+            scaled.location.major50_m, 0.5 * one.location.major50_m, 1e-9 * 600.0);
+        EXPECT_NEAR(
+            scaled.location.minor50_m, 0.5 * one.location.minor50_m, 1e-9 * 600.0);
+    }
+    seeker_config c;
+    EXPECT_EQ(c.locate_scale95, 1.0);
+    EXPECT_EQ(c.locate_scale50, 1.0);
+    for (double bad : { 0.05, 11.0, double(NAN) })
+        for (const char* name : { "locate_scale95", "locate_scale50" }) {
+            seeker_config b;
+            (std::string(name) == "locate_scale95" ? b.locate_scale95
+                                                   : b.locate_scale50) = bad;
+            try {
+                b.validate();
+                ADD_FAILURE() << name << " = " << bad << " accepted";
+            } catch (const std::invalid_argument& e) {
+                EXPECT_NE(std::string(e.what()).find(name), std::string::npos);
+            }
+        }
 }
 
 TEST(honest_ellipse, the_calibrated_factors_never_shrink_in_stronger_air)

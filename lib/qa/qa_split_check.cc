@@ -176,12 +176,7 @@ TEST(split_check, the_closed_loop_publishes_the_same_fix_with_only_its_ellipse_s
     // passes the gate. (The grown ellipse also decides whether the fix is sure: with no
     // limit on the ellipse, the flights are the same.)
     for (std::uint64_t seed : { 3, 4 }) {
-        scenario sc;
-        sc.apply_preset("realistic");
-        sc.seed = seed;
-        sc.self_arrival = true;
-        seeker_config cfg = simulation::seeker_for(sc, "adaptive");
-        cfg.locate_max_axis_m = 1e6;
+        auto [sc, cfg] = unlimited_fix_flight(seed);
         const run_result on = simulation(sc, cfg).run(false);
         cfg.locate_split_gate = 0.0;
         const run_result off = simulation(sc, cfg).run(false);

@@ -122,6 +122,28 @@ class qa_closed_loop(gr_unittest.TestCase):
         self.assertTrue(a["location_unsure"])
         self.assertEqual(a["location_in_ellipse50"], unsure.summary.location_in_ellipse50)
 
+    def test_the_users_ellipse_factors_reach_the_status_message(self):
+        # locate_scale95 / locate_scale50 scale the published ellipses only: through GNU
+        # Radio the status message carries the same fix with its 95 % semi-axes 1.5 x
+        # and its 50 % ones 2 x the default flight's (no limit on the ellipse, so the
+        # flights are the same). Out of range: ValueError naming the field.
+        sc = rfseek.scenario(seed=2, self_arrival=True)
+        cfg = rfseek.simulation.seeker_for(sc, "adaptive")
+        cfg.locate_max_axis_m = 1e6
+        one = rfseek.simulation(sc, cfg).run()
+        cfg.locate_scale95, cfg.locate_scale50 = 1.5, 2.0
+        tb = flowgraphs.closed_loop(sc, cfg)
+        tb.run()
+        fix = tb.collector.status[-1]
+        self.assertEqual(fix["status"], "located")
+        self.assertAlmostEqual(fix["major_m"], 1.5 * one.location.major_m, places=6)
+        self.assertAlmostEqual(fix["minor_m"], 1.5 * one.location.minor_m, places=6)
+        self.assertAlmostEqual(fix["major50_m"], 2.0 * one.location.major50_m, places=6)
+        for key in ("locate_scale95", "locate_scale50"):
+            for bad in (0.0, 11.0, float("nan")):
+                with self.assertRaisesRegex(ValueError, "seeker_config." + key):
+                    rfseek.seeker_config(**{key: bad})
+
     def test_status_without_self_arrival_says_seeking_once(self):
         sc = rfseek.scenario(seed=3, initial_distance_m=1000.0)
         tb = flowgraphs.closed_loop(sc, "paper")

@@ -4,7 +4,7 @@
  */
 
 /* BINDTOOL_HEADER_FILE(seeker.h) */
-/* BINDTOOL_HEADER_FILE_HASH(0f0e36f17ffe3d53c072e506b8dfe27f) */
+/* BINDTOOL_HEADER_FILE_HASH(a2ae14c95fd587031290175f5c6b3369) */
 
 #include "kwargs.h"
 #include <gr-rfseek/seeker.h>
@@ -76,6 +76,11 @@ void bind_arrival_fields(py::class_<gr::rfseek::seeker_config>& c)
        "and altimeter readings off by +- locate_altimeter_range_m, its ellipse theirs "
        "mixed by evidence and calibrated (False: the prior's fit alone)");
     RW(locate_altimeter_range_m, "altimeter error the fix carries (m, 0..1000)");
+    RW(locate_scale95,
+       "the user's factor on the honest 95 % ellipse's radii, on top of the calibrated "
+       "ones (0.1..10; above 1 for a day rougher than the calibration's envelope); the "
+       "wider ellipse also decides sure or unsure");
+    RW(locate_scale50, "the same for the 50 % ellipse (0.1..10)");
     RW(locate_altitude_m,
        "location fit: the vehicle's height above the emitter's ground as its altimeter "
        "holds it (m; NaN: unknown, no height prior)");

@@ -250,12 +250,11 @@ TEST(honest_ellipse, the_users_factors_scale_the_published_ellipses_only)
     seeker_config c;
     EXPECT_EQ(c.locate_scale95, 1.0);
     EXPECT_EQ(c.locate_scale50, 1.0);
-    for (double bad : { 0.05, 11.0, double(NAN) })
+    for (const char* bad : { "0.05", "11", "nan" })
         for (const char* name : { "locate_scale95", "locate_scale50" }) {
             seeker_config b;
-            (std::string(name) == "locate_scale95" ? b.locate_scale95
-                                                   : b.locate_scale50) = bad;
             try {
+                b.set(name, bad);
                 b.validate();
                 ADD_FAILURE() << name << " = " << bad << " accepted";
             } catch (const std::invalid_argument& e) {

@@ -13,6 +13,7 @@
 
 #include <Eigen/Dense>
 #include <gr-rfseek/arrival.h>
+#include <gr-rfseek/seeker.h>
 #include <algorithm>
 #include <cmath>
 #include <vector>
@@ -65,6 +66,24 @@ inline void cap_ellipse_size(double& major_m, double& minor_m, double size_m)
         major_m *= size_m / g;
         minor_m *= size_m / g;
     }
+}
+
+/*!
+ * A fit of all a loiter's data, published unsure (c: the seeker's settings). Spanning
+ * several orbits over the emitter it errs by tens of metres whatever its covariance
+ * says (often kilometres): its ellipses keep their direction and aspect and take the
+ * calibrated size of such fits (locator_nuisance::whole_loiter_radii, larger low in the
+ * wind), in proportion to a wider orbit, times the user's factors, unless their own are
+ * smaller.
+ */
+inline void size_whole_loiter_fix(emitter_location& l, const seeker_config& c)
+{
+    const double k = std::max(1.0, c.loiter_radius_m / seeker_config().loiter_radius_m);
+    const auto r = locator_nuisance::whole_loiter_radii(
+        l.altitude_m, std::hypot(l.wind_east_mps, l.wind_north_mps) / c.speed_mps);
+    cap_ellipse_size(l.major_m, l.minor_m, r[0] * k * c.locate_scale95);
+    cap_ellipse_size(l.major50_m, l.minor50_m, r[1] * k * c.locate_scale50);
+    l.unsure = true;
 }
 
 //! An earlier fix l carried to time t, unsure: in the dead-reckoned (air) frame the

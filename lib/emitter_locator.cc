@@ -348,6 +348,13 @@ locator_nuisance::factors(double gust_rms_mps, double wind_fraction, double heig
     return { k.k95, k.k50 };
 }
 
+std::array<double, 2> locator_nuisance::whole_loiter_radii(double height_m,
+                                                           double wind_fraction)
+{
+    const bool low = !(height_m >= LOW_HEIGHT_M) && !(wind_fraction < LOW_WIND_FRACTION);
+    return low ? LOW_WANDER_RADII_M : WANDER_RADII_M;
+}
+
 namespace {
 
 // The fix under every nuisance model (locator_nuisance), weighted by evidence: the mean

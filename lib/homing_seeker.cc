@@ -252,11 +252,31 @@ private:
         return std::max(0.0, r - d_cfg.loiter_radius_m) / d_cfg.speed_mps;
     }
 
-    // The unsure fix at time t: the first confirmed fit carried to t, or a fit of
-    // everything now, whichever has the smaller 95 % ellipse (the carried fit's grows
-    // with the wind's uncertainty; a fit over more data drifts with the gusts).
+    // The honest fit of all the loiter's data at time t, unsure and sized as such fits
+    // err (size_whole_loiter_fix), else an invalid one: valid, agreeing with the
+    // altimeter and within the search area.
+    emitter_location whole_loiter_fix(double t) const
+    {
+        emitter_location now = d_locator.fit(d_x, d_y, true);
+        if (!now.valid || !height_agrees(now) ||
+            !(std::hypot(now.east_m, now.north_m) <= SEARCH_RADIUS_M))
+            return emitter_location();
+        if (d_cfg.locate_split_gate > 0.0)
+            d_locator.check_split(now, d_cfg.locate_split_gate);
+        size_whole_loiter_fix(now, d_cfg);
+        now.time_s = t;
+        return now;
+    }
+
+    // The unsure fix at time t: with the nuisance carried, the fit of all the data (it
+    // errs far less than the first confirmed fit carried with its wind). Otherwise, or
+    // if that fit fails, the carried fit or a fit of everything now, whichever has the
+    // smaller 95 % ellipse (the carried fit's grows with the wind's uncertainty).
     emitter_location unsure_fix(double t) const
     {
+        if (d_cfg.locate_nuisance)
+            if (const emitter_location w = whole_loiter_fix(t); w.valid)
+                return w;
         emitter_location l = carried_fix(d_candidate, t);
         emitter_location now = d_locator.fit(d_x, d_y, d_cfg.locate_nuisance);
         if (now.valid && height_agrees(now) && d_cfg.locate_split_gate > 0.0)
@@ -271,8 +291,8 @@ private:
     /*
      * The fix of a loiter whose estimate wanders, else an invalid one: not arrived, no
      * fit held back, the last fit within WANDER_CONFIRMS x arrival_confirm_m of the
-     * estimate, the orbits placing the emitter near; the honest fit of all the data,
-     * unsure, if valid, agreeing with the altimeter and within the search area.
+     * estimate, the orbits placing the emitter near; the fit of all the data
+     * (whole_loiter_fix).
      */
     emitter_location wandering_fix(double t) const
     {
@@ -280,22 +300,8 @@ private:
             !(d_last_offset <= WANDER_CONFIRMS * d_cfg.arrival_confirm_m) ||
             !orbits_place_emitter_near())
             return emitter_location();
-        emitter_location now = d_locator.fit(d_x, d_y, true);
-        if (!now.valid || !height_agrees(now) ||
-            !(std::hypot(now.east_m, now.north_m) <= SEARCH_RADIUS_M))
-            return emitter_location();
-        if (d_cfg.locate_split_gate > 0.0)
-            d_locator.check_split(now, d_cfg.locate_split_gate);
-        // Sized as such fits err (WANDER_RADII_M), in proportion to a wider orbit, times
-        // the user's factors.
-        const double k =
-            std::max(1.0, d_cfg.loiter_radius_m / seeker_config().loiter_radius_m);
-        const auto& r = locator_nuisance::WANDER_RADII_M;
-        cap_ellipse_size(now.major_m, now.minor_m, r[0] * k * d_cfg.locate_scale95);
-        cap_ellipse_size(now.major50_m, now.minor50_m, r[1] * k * d_cfg.locate_scale50);
-        now.unsure = true;
-        now.wandered = true;
-        now.time_s = t;
+        emitter_location now = whole_loiter_fix(t);
+        now.wandered = now.valid;
         return now;
     }
 

@@ -203,7 +203,7 @@ struct RFSEEK_API emitter_location {
     bool unsure = false;
     //! The fix of a loiter whose estimate wandered (strong gusts: no fit confirmed the
     //! estimate orbited): a fit of all the loiter's data, published unsure, its
-    //! ellipses sized by locator_nuisance::WANDER_RADII_M (when calibrated).
+    //! ellipses sized by locator_nuisance::whole_loiter_radii (when calibrated).
     bool wandered = false;
 };
 
@@ -249,6 +249,17 @@ struct RFSEEK_API locator_nuisance {
     //! direction and aspect (along the major axis the error is about twice that
     //! along the minor) and gives it this size, unless its own is smaller.
     static constexpr std::array<double, 2> WANDER_RADII_M{ { 63.0, 15.0 } };
+    //! The same sizes for such a fit low in the wind (under LOW_HEIGHT_M, a mean
+    //! wind of at least LOW_WIND_FRACTION of the airspeed): there the gusts' drift
+    //! moves a fit of several orbits by up to a few hundred metres.
+    static constexpr std::array<double, 2> LOW_WANDER_RADII_M{ { 210.0, 37.0 } };
+    //! The sizes {95 %, 50 %} (m) the seeker gives the ellipses of a fit of all a
+    //! loiter's data published unsure (a wandering loiter's, or at the end of the
+    //! budget): WANDER_RADII_M, or LOW_WANDER_RADII_M for a fit at height_m (m) in a
+    //! mean wind of wind_fraction of the airspeed that is low in the wind. A NaN
+    //! argument counts as low.
+    static std::array<double, 2> whole_loiter_radii(double height_m,
+                                                    double wind_fraction);
     //! The calibrated radius factors {95 %, 50 %} of a fix whose fit found this gust
     //! level (emitter_location::gust_rms_mps), mean wind |w| / airspeed_mps and height
     //! (emitter_location::altitude_m; the default: not low); applied when calibrated,

@@ -344,3 +344,23 @@ TEST(honest_ellipse, the_calibrated_factors_never_shrink_in_stronger_air)
     EXPECT_NEAR(lw[0] / calm[0], 12.26 / 1.13, 1e-9);
     EXPECT_LT(lw[1] / calm[1], lw[0] / calm[0]);
 }
+
+TEST(honest_ellipse, a_whole_loiters_fix_is_sized_as_the_factors_place_it_low_or_not)
+{
+    // A fit of all a loiter's data takes the low sizes exactly where the calibrated
+    // factors take their low row (under LOW_HEIGHT_M, in at least LOW_WIND_FRACTION
+    // of the airspeed; NaN counts as low), the 50 % contour inside the 95 %.
+    using ln = locator_nuisance;
+    const double h0 = ln::LOW_HEIGHT_M, w0 = ln::LOW_WIND_FRACTION;
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    for (double h : { 20.0, 50.0, std::nextafter(h0, 0.0), h0, 120.0, nan })
+        for (double w : { 0.0, std::nextafter(w0, 0.0), w0, 0.5, 1.0, nan }) {
+            const bool low_factors = ln::factors(0.7, w, h) != ln::factors(0.7, w);
+            const auto r = ln::whole_loiter_radii(h, w);
+            EXPECT_EQ(r, low_factors ? ln::LOW_WANDER_RADII_M : ln::WANDER_RADII_M)
+                << "height " << h << " wind " << w;
+            EXPECT_LT(r[1], r[0]);
+        }
+    EXPECT_GT(ln::LOW_WANDER_RADII_M[0], ln::WANDER_RADII_M[0]);
+    EXPECT_GT(ln::LOW_WANDER_RADII_M[1], ln::WANDER_RADII_M[1]);
+}

@@ -144,6 +144,21 @@ class qa_closed_loop(gr_unittest.TestCase):
                 with self.assertRaisesRegex(ValueError, "seeker_config." + key):
                     rfseek.seeker_config(**{key: bad})
 
+    def test_a_whole_loiters_fix_sizes_from_python(self):
+        # The sizes of a fit of all a loiter's data: the low ones exactly where the
+        # calibrated factors take their low row (under LOW_HEIGHT_M in at least
+        # LOW_WIND_FRACTION of the airspeed), larger; NaN counts as low.
+        ln = rfseek.locator_nuisance
+        h0, w0 = 70.0, 0.2  # C++ LOW_HEIGHT_M, LOW_WIND_FRACTION
+        far = ln.wander_radii_m()
+        low = ln.whole_loiter_radii(h0 - 20, w0)
+        self.assertEqual(ln.whole_loiter_radii(h0, w0), far)
+        self.assertEqual(ln.whole_loiter_radii(h0 - 20, w0 / 2), far)
+        self.assertEqual(ln.whole_loiter_radii(float("nan"), float("nan")), low)
+        self.assertGreater(low[0], far[0])
+        self.assertGreater(low[1], far[1])
+        self.assertLess(low[1], low[0])
+
     def test_status_without_self_arrival_says_seeking_once(self):
         sc = rfseek.scenario(seed=3, initial_distance_m=1000.0)
         tb = flowgraphs.closed_loop(sc, "paper")

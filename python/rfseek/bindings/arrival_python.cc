@@ -4,7 +4,7 @@
  */
 
 /* BINDTOOL_HEADER_FILE(arrival.h) */
-/* BINDTOOL_HEADER_FILE_HASH(cff872ade0a7ea27d2b7ea2aa7b47e89) */
+/* BINDTOOL_HEADER_FILE_HASH(f5c5bb1f374a3a52239540ba41783942) */
 
 #include <gr-rfseek/arrival.h>
 #include <pybind11/pybind11.h>
@@ -289,6 +289,16 @@ void bind_locator_nuisance_class(py::module& m)
             "the ellipses of a loiter whose estimate wandered (emitter_location."
             "wandered), their direction and aspect kept, unless their own are "
             "smaller (WANDER_RADII_M in C++)")
+        .def_static("whole_loiter_radii",
+                    &locator_nuisance::whole_loiter_radii,
+                    py::arg("height_m"),
+                    py::arg("wind_fraction"),
+                    "The sizes [95 %, 50 %] (m, as wander_radii_m) the seeker gives "
+                    "the ellipses of a fit of all a loiter's data published unsure "
+                    "(a wandering loiter's, or at the end of the loiter's budget) at "
+                    "this height (emitter_location.altitude_m) and mean wind / "
+                    "airspeed: larger low in the wind (under LOW_HEIGHT_M, at least "
+                    "LOW_WIND_FRACTION); NaN counts as low")
         .def_static("factors",
                     &locator_nuisance::factors,
                     py::arg("gust_rms_mps"),

@@ -15,7 +15,9 @@
 #include <gr-rfseek/arrival.h>
 #include <gr-rfseek/seeker.h>
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <deque>
 #include <vector>
 
 namespace gr {
@@ -84,6 +86,50 @@ inline void size_whole_loiter_fix(emitter_location& l, const seeker_config& c)
     cap_ellipse_size(l.major_m, l.minor_m, r[0] * k * c.locate_scale95);
     cap_ellipse_size(l.major50_m, l.minor50_m, r[1] * k * c.locate_scale50);
     l.unsure = true;
+}
+
+/*!
+ * The Doppler's amplitude in the heading (doppler_amplitude, Hz) over the measurements
+ * m (time, heading, frequency; oldest first) of the last `orbits` orbits of orbit_s,
+ * widened an orbit at a time, to max_orbits at most, while their headings do not go all
+ * round (NaN if they never do). Where the wind drags the orbit, an orbit's time of data
+ * often holds a transit to a moved estimate and not every heading.
+ */
+inline double recent_amplitude(const std::deque<std::array<double, 3>>& m,
+                               double orbit_s,
+                               double orbits,
+                               double max_orbits)
+{
+    double amp = NAN;
+    for (double k = orbits; k <= max_orbits && !std::isfinite(amp) && !m.empty(); ++k) {
+        doppler_amplitude a;
+        for (const auto& r : m)
+            if (r[0] >= m.back()[0] - k * orbit_s)
+                a.add(r[0], r[1], r[2]);
+        amp = a.amplitude();
+    }
+    return amp;
+}
+
+/*!
+ * An unsure fix l whose 95 % ellipse must reach where another fit w of the same data
+ * places the emitter (both in the dead-reckoned frame, from the vehicle at their own
+ * times): both of l's ellipses scaled, direction and aspect kept, to put that point on
+ * the 95 % contour if it lies outside.
+ */
+inline void reach_fit(emitter_location& l, const emitter_location& w)
+{
+    const double dx = w.east_m + w.dr_x_m - l.east_m - l.dr_x_m;
+    const double dy = w.north_m + w.dr_y_m - l.north_m - l.dr_y_m;
+    const double c = std::cos(l.major_angle_rad), s = std::sin(l.major_angle_rad);
+    const double u = (dx * c + dy * s) / l.major_m, v = (dy * c - dx * s) / l.minor_m;
+    const double k = std::sqrt(u * u + v * v);
+    if (!(k > 1.0) || !std::isfinite(k))
+        return;
+    l.major_m *= k;
+    l.minor_m *= k;
+    l.major50_m *= k;
+    l.minor50_m *= k;
 }
 
 //! An earlier fix l carried to time t, unsure: in the dead-reckoned (air) frame the

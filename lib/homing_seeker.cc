@@ -186,24 +186,23 @@ private:
     }
 
     /*
-     * Whether the orbits flown around the estimate (the last CENTRED_ORBITS of them)
-     * place the emitter near: their Doppler's amplitude in the heading
-     * (doppler_amplitude) stays below NEAR_AMPLITUDE_FRACTION of the far check's. Far
-     * from the emitter every path arrives from one bearing and a turn swings the
-     * Doppler by f_d,max wherever the orbit is (gusts moved it to 0.80-1.11 over orbits
-     * 1.6-5 km off); on an orbit around the emitter the ground velocity stays across
-     * the line of sight and the Doppler barely swings (`windy`: median 0.4 f_d,max, 90 %
-     * under 0.69). Only where the far check runs (at least MIN_FAR_CHECK_ALTITUDE_M up):
-     * lower, an orbit 50 m off swings as far as one far.
+     * Whether the orbits flown around the estimate (the last CENTRED_ORBITS of them, up
+     * to MAX_ORBITS until their headings go all round) place the emitter near: their
+     * Doppler's amplitude in the heading (doppler_amplitude) stays below
+     * NEAR_AMPLITUDE_FRACTION of the far check's. Far from the emitter every path arrives
+     * from one bearing and a turn swings the Doppler by f_d,max wherever the orbit is
+     * (gusts moved it to 0.80-1.11 over orbits 1.6-5 km off); on an orbit around the
+     * emitter the ground velocity stays across the line of sight and the Doppler barely
+     * swings (`windy`: median 0.4 f_d,max, 90 % under 0.69). Only where the far check
+     * runs (at least MIN_FAR_CHECK_ALTITUDE_M up): lower, an orbit 50 m off swings as far
+     * as one far.
      */
     bool orbits_place_emitter_near() const
     {
         if (!far_check())
             return false;
-        doppler_amplitude a;
-        for (const auto& r : d_centred_orbits)
-            a.add(r[0], r[1], r[2]);
-        const double amp = a.amplitude();
+        const double amp =
+            recent_amplitude(d_centred_orbits, orbit_s(), CENTRED_ORBITS, MAX_ORBITS);
         return std::isfinite(amp) && amp < NEAR_AMPLITUDE_FRACTION * far_amplitude_hz();
     }
 
@@ -271,7 +270,8 @@ private:
     // The unsure fix at time t: with the nuisance carried, the fit of all the data (it
     // errs far less than the first confirmed fit carried with its wind). Otherwise, or
     // if that fit fails, the carried fit or a fit of everything now, whichever has the
-    // smaller 95 % ellipse (the carried fit's grows with the wind's uncertainty).
+    // smaller 95 % ellipse; the carried fit's reaching where that fit places the
+    // emitter (beyond the search area: the data do not agree with it).
     emitter_location unsure_fix(double t) const
     {
         if (d_cfg.locate_nuisance)
@@ -285,6 +285,8 @@ private:
             now.unsure = true;
             return now;
         }
+        if (d_cfg.locate_nuisance && now.valid && height_agrees(now))
+            reach_fit(l, now);
         return l;
     }
 
@@ -440,7 +442,7 @@ private:
             d_first_orbit.add(m.time_s, h, m.freq_hz);
         if (usable && d_centred && std::isfinite(m.time_s)) {
             d_centred_orbits.push_back({ m.time_s, h, m.freq_hz });
-            while (d_centred_orbits.front()[0] < m.time_s - CENTRED_ORBITS * orbit_s())
+            while (d_centred_orbits.front()[0] < m.time_s - MAX_ORBITS * orbit_s())
                 d_centred_orbits.pop_front();
         }
         if (usable)
@@ -554,11 +556,10 @@ private:
     static constexpr double MAX_WIND_FRACTION = 0.9;         // of the airspeed
     static constexpr double MIN_FAR_CHECK_ALTITUDE_M = 50.0; // far_check()
     static constexpr double HEIGHT_SIGMAS = 2.5;             // height_agrees()
-    static constexpr double CENTRED_ORBITS = 2.0; // orbits_place_emitter_near()
-    static constexpr double NEAR_AMPLITUDE_FRACTION = 2.0 / 3.0; // of the far check's
-    static constexpr double WANDER_CONFIRMS = 4.0;               // of arrival_confirm_m
-    static constexpr int MAX_RETARGETS = 6; // moves of the orbited estimate that
-                                            // extend the time allowed
+    static constexpr double CENTRED_ORBITS = 2.0, MAX_ORBITS = 4.0; // near()
+    static constexpr double NEAR_AMPLITUDE_FRACTION = 2.0 / 3.0;    // of the far check's
+    static constexpr double WANDER_CONFIRMS = 4.0; // of arrival_confirm_m
+    static constexpr int MAX_RETARGETS = 6; // moves of the estimate that extend the time
     int d_status = 0;
     bool d_loitering = false; // stage 3: orbiting (checking, arrived or located)
     bool d_done = false;
@@ -567,7 +568,7 @@ private:
     emitter_location d_pending;   // confirmed fix, published with the next slot
     emitter_location d_candidate; // the first confirmed fit (published unsure)
     double d_heading_cmd = 0.0, d_last_heading = 0.0, d_loiter_start = 0.0;
-    // Time, heading, frequency of the usable measurements of the last CENTRED_ORBITS
+    // Time, heading, frequency of the usable measurements of the last MAX_ORBITS
     // orbits around the estimate (orbits_place_emitter_near()).
     std::deque<std::array<double, 3>> d_centred_orbits;
     emitter_location d_held; // the last confirming fit held back by the 600 m rule

@@ -16,7 +16,9 @@
 #include <gr-rfseek/simulation.h>
 #include <gtest/gtest.h>
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <deque>
 #include <stdexcept>
 #include <utility>
 #include <vector>
@@ -322,6 +324,69 @@ TEST(doppler_amplitude, needs_a_whole_turn)
                 M_PI + M_PI * k / 300.0,
                 100.0 - A * std::cos(M_PI * k / 300.0));
     EXPECT_NEAR(amp.amplitude(), A, 1e-6 * A);
+}
+
+TEST(arrival_math, recent_amplitude_widens_its_window_to_a_whole_turn)
+{
+    // Far-field Doppler from a bearing of 0.3 rad: a whole turn of 15 s, then 30 s of
+    // a straight transit. The last two orbits (30 s) hold the transit only; three hold
+    // the turn too, and the fit reads f_d,max. A window that may not widen, or headings
+    // that never go all round, give NaN.
+    const double orbit_s = 15.0, bearing = 0.3;
+    std::deque<std::array<double, 3>> m;
+    EXPECT_TRUE(std::isnan(recent_amplitude(m, orbit_s, 2.0, 4.0)));
+    for (int k = 0; k < 300; ++k) {
+        const double psi = 2.0 * M_PI * k / 300.0;
+        m.push_back({ k * T, psi, 100.0 + A * std::cos(psi - bearing) });
+    }
+    for (int k = 300; k < 900; ++k)
+        m.push_back({ k * T, 0.5, 100.0 + A * std::cos(0.5 - bearing) });
+    EXPECT_TRUE(std::isnan(recent_amplitude(m, orbit_s, 2.0, 2.0)));
+    EXPECT_NEAR(recent_amplitude(m, orbit_s, 2.0, 4.0), A, 1e-6 * A);
+    m.erase(m.begin(), m.begin() + 150); // only half the turn left
+    EXPECT_TRUE(std::isnan(recent_amplitude(m, orbit_s, 2.0, 4.0)));
+}
+
+TEST(arrival_math, reach_fit_grows_an_ellipse_to_another_fits_emitter)
+{
+    // A 95 % ellipse of 100 x 50 m along the north-east diagonal, the vehicle 100 m east
+    // of the loiter's start then; another fit, made 200 m further east, places the
+    // emitter 300 m along the major axis from it (in the dead-reckoned frame): both
+    // ellipses grow 3 x, aspect and direction kept. A point inside changes nothing.
+    emitter_location l;
+    l.dr_x_m = 100.0;
+    l.major_m = 100.0;
+    l.minor_m = 50.0;
+    l.major50_m = 40.0;
+    l.minor50_m = 20.0;
+    l.major_angle_rad = M_PI / 4.0;
+    emitter_location w;
+    w.dr_x_m = 300.0;
+    const double d = 300.0 / std::sqrt(2.0);
+    w.east_m = d - 200.0;
+    w.north_m = d;
+    emitter_location grown = l;
+    reach_fit(grown, w);
+    EXPECT_NEAR(grown.major_m, 300.0, 1e-9);
+    EXPECT_NEAR(grown.minor_m, 150.0, 1e-9);
+    EXPECT_NEAR(grown.major50_m, 120.0, 1e-9);
+    EXPECT_NEAR(grown.minor50_m, 60.0, 1e-9);
+    EXPECT_EQ(grown.major_angle_rad, l.major_angle_rad);
+    // Across the major axis the minor one governs: 100 m off is 2 minor semi-axes.
+    w.east_m = -200.0 - 100.0 / std::sqrt(2.0);
+    w.north_m = 100.0 / std::sqrt(2.0);
+    grown = l;
+    reach_fit(grown, w);
+    EXPECT_NEAR(grown.minor_m, 100.0, 1e-9);
+    EXPECT_NEAR(grown.major_m, 200.0, 1e-9);
+    w.east_m = -190.0; // 10 m from l's emitter: inside
+    w.north_m = 0.0;
+    grown = l;
+    reach_fit(grown, w);
+    EXPECT_EQ(grown.major_m, 100.0);
+    w.east_m = NAN; // nothing to reach
+    reach_fit(grown, w);
+    EXPECT_EQ(grown.major_m, 100.0);
 }
 
 /*

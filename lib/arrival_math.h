@@ -111,6 +111,15 @@ inline double recent_amplitude(const std::deque<std::array<double, 3>>& m,
     return amp;
 }
 
+//! Both of l's ellipses (95 % and 50 %) scaled by k, direction and aspect kept.
+inline void scale_ellipses(emitter_location& l, double k)
+{
+    l.major_m *= k;
+    l.minor_m *= k;
+    l.major50_m *= k;
+    l.minor50_m *= k;
+}
+
 /*!
  * An unsure fix l whose 95 % ellipse must reach where another fit w of the same data
  * places the emitter (both in the dead-reckoned frame, from the vehicle at their own
@@ -124,12 +133,8 @@ inline void reach_fit(emitter_location& l, const emitter_location& w)
     const double c = std::cos(l.major_angle_rad), s = std::sin(l.major_angle_rad);
     const double u = (dx * c + dy * s) / l.major_m, v = (dy * c - dx * s) / l.minor_m;
     const double k = std::sqrt(u * u + v * v);
-    if (!(k > 1.0) || !std::isfinite(k))
-        return;
-    l.major_m *= k;
-    l.minor_m *= k;
-    l.major50_m *= k;
-    l.minor50_m *= k;
+    if (k > 1.0 && std::isfinite(k))
+        scale_ellipses(l, k);
 }
 
 //! An earlier fix l carried to time t, unsure: in the dead-reckoned (air) frame the

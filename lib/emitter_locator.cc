@@ -586,10 +586,7 @@ bool emitter_locator::check_split(emitter_location& l, double gate) const
         // The halves disagree beyond what their ellipses allow: the covariance is
         // scaled by T / 2, the factor by which the disagreement exceeds its mean.
         const double k = std::sqrt(0.5 * T);
-        l.major_m *= k;
-        l.minor_m *= k;
-        l.major50_m *= k;
-        l.minor50_m *= k;
+        scale_ellipses(l, k);
         l.wind_sigma_mps *= k;
     }
     return true;

@@ -43,6 +43,13 @@ from . import rfseek_python as _core
 _BAUDS = (9600, 19200, 38400, 57600, 115200, 230400, 460800, 500000, 921600, 1500000)
 
 
+def _msgid(frame):
+    """The message id of a MAVLink frame (version 2: bytes 7-9; version 1: byte 5)."""
+    if len(frame) >= 10 and frame[0] == 0xFD:
+        return frame[7] | frame[8] << 8 | frame[9] << 16
+    return frame[5] if len(frame) >= 6 and frame[0] == 0xFE else None
+
+
 def _port(text, host, owner, spec):
     try:
         port = int(text)
@@ -285,6 +292,7 @@ class autopilot_link(gr.basic_block):
         self.nav_count = 0
         self.statuses = []
         self._logged = set()
+        self._control_sent_s = None  # see control_sent_s()
         self._lock = threading.Lock()
         self._running = False
         self._thread = None
@@ -372,6 +380,8 @@ class autopilot_link(gr.basic_block):
             for f in frames:
                 try:
                     self.transport.send(f)
+                    if _msgid(f) != 0:  # not a HEARTBEAT: a setpoint or a command
+                        self._control_sent_s = t + (self._ap_offset or 0.0)
                 except OSError as e:
                     if "send" not in self._logged:
                         self._logged.add("send")
@@ -395,6 +405,14 @@ class autopilot_link(gr.basic_block):
         """A new commanded airspeed (m/s; 0: the autopilot's own), sent when commanding."""
         with self._lock:
             self.session.set_airspeed(float(airspeed_mps))
+
+    def control_sent_s(self):
+        """When the link last sent the autopilot a frame other than a heartbeat (a
+        setpoint or a command), on the autopilot's clock (time_boot, s) with clock
+        "autopilot", else the host's; None before the first. A rehearsal times the
+        firmware's response to a command from it, not from when the command was given."""
+        with self._lock:
+            return self._control_sent_s
 
     def status(self):
         """The link's current status (a dict, as on the status port)."""

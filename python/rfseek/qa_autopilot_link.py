@@ -326,6 +326,37 @@ const out = [];
             os.close(master)
             os.close(slave)
 
+    def test_when_a_setpoint_last_went_out(self):
+        # control_sent_s(): the link's clock when it last sent a frame other than a
+        # heartbeat (the SITL rehearsal times the firmware's response from it). A
+        # copter's setpoint stream on the host clock: it moves with the setpoints,
+        # stays put while only heartbeats go out, and is never after their arrival.
+        mav = rfseek.mavlink
+        from gnuradio.rfseek.autopilot_link import _msgid
+        hb = mav.encode(mav.message("HEARTBEAT"), mav.header(0, 1, 1))
+        att = mav.encode(mav.message("ATTITUDE"), mav.header(1, 1, 1))
+        self.assertEqual((_msgid(hb), _msgid(att)), (0, 30))
+        self.assertEqual(_msgid(bytes([0xFE, 9, 0, 1, 1, 0]) + bytes(11)), 0)  # version 1
+        self.assertIsNone(_msgid(b""))
+        p = pair(family="ardupilot_copter", command_timeout_s=0.5)
+        try:
+            p.command(0.7)
+            self.assertTrue(wait_until(lambda: len(p.sim_commands()) >= 3))
+            self.assertTrue(wait_until(
+                lambda: "command_timeout_s" in p.link.status()["reason"]))
+            wait_until(lambda: False, timeout=0.3)
+            sent = p.link.control_sent_s()
+            setpoints = [t for t, name in p.sim.arrivals if name == "SET_ATTITUDE_TARGET"]
+            self.assertLessEqual(sent, max(setpoints) + 1e-6)
+            self.assertGreater(sent, max(setpoints) - 0.1)
+            beats = p.link.status()["heartbeats"]
+            self.assertTrue(wait_until(lambda: p.link.status()["heartbeats"] > beats + 1))
+            self.assertTrue(any(t > sent + 0.5 for t, name in p.sim.arrivals
+                                if name == "HEARTBEAT"))
+            self.assertEqual(p.link.control_sent_s(), sent)  # heartbeats only since
+        finally:
+            p.close()
+
     def test_the_autopilot_clock(self):
         # clock "autopilot" (a rehearsal against a simulator): the link's time goes on
         # from where it was at the first ATTITUDE, then moves as the autopilot's

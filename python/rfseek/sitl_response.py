@@ -17,7 +17,8 @@ per step:
   rate      the steady turn rate: the heading change from a quarter to three
             quarters of the step over its time (steps of 90 deg or more)
   bank      the steady bank: the median over that part (smaller steps: the largest)
-  roll-in   time from the command until the bank first reaches 90 % of it
+  roll-in   time from the link's first frame after the command (on the autopilot's
+            clock) until the bank first reaches 90 % of it
   settle    time until the heading stays within 5 deg of the command
   speed     speed over the ground lost in the turn (the mean in the 3 s before the
             command less the least until settled)
@@ -172,12 +173,20 @@ def fly_sitl(vehicle, speedup, sitl_dir, log):
                 end = t + dur
                 head = math.radians(90.0 - target)
                 last_cmd = -1.0
+                sent_before, delivered = link.control_sent_s(), False
                 while t < end:
                     if not proc.alive():
                         raise sitl.SitlError("the SITL stopped: %s" % proc.log_tail(1))
                     if t - last_cmd >= 0.2:  # the controller's pace: a command a slot
                         link.handle_cmd(pmt.to_pmt({"heading": head}))
                         last_cmd = t
+                    sent = link.control_sent_s()
+                    if not delivered and sent is not None and sent != sent_before:
+                        # The step starts when the link first sends the new heading (the
+                        # autopilot's clock): the host's latency (the setpoint's phase,
+                        # a loaded machine) is not the firmware's response.
+                        delivered = True
+                        starts[-1] = (max(starts[-1][0], sent), target)
                     for tr in reader.read(0.02):
                         t = tr["time"]
                         samples.append({

@@ -17,15 +17,15 @@ per step:
   rate      the steady turn rate: the heading change from a quarter to three
             quarters of the step over its time (steps of 90 deg or more)
   bank      the steady bank: the median over that part (smaller steps: the largest)
-  roll-in   time from the link's first frame after the command (on the autopilot's
-            clock) until the bank first reaches 90 % of it
+  roll-in   time from the command until the bank first reaches 90 % of it
   settle    time until the heading stays within 5 deg of the command
   speed     speed over the ground lost in the turn (the mean in the 3 s before the
             command less the least until settled)
   height    height lost in the turn (the same, for the height)
 
-and, on the straight legs, the speed and how far the track is from the yaw. compare()
-checks them against TOLERANCES. Program: scripts/sitl_response.py.
+and, on the straight legs, the speed and how far the track is from the yaw. The
+firmware's times count from the link's first frame after the command (its clock): the
+host's latency is not the firmware's. compare() checks them against TOLERANCES. Program: scripts/sitl_response.py.
 """
 
 import argparse

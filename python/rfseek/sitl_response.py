@@ -25,7 +25,8 @@ per step:
 
 and, on the straight legs, the speed and how far the track is from the yaw. The
 firmware's times count from the link's first frame after the command (its clock): the
-host's latency is not the firmware's. compare() checks them against TOLERANCES. Program: scripts/sitl_response.py.
+host's latency is not the firmware's. compare() checks them against TOLERANCES.
+Program: scripts/sitl_response.py.
 """
 
 import argparse

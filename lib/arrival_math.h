@@ -155,6 +155,45 @@ inline emitter_location carried_fix(emitter_location l, double t)
     return l;
 }
 
+/*!
+ * Whether a fit's height contradicts the altimeter (c: the seeker's settings): beyond
+ * HEIGHT_SIGMAS x its stated accuracy above it. An orbit far from the emitter swings its
+ * Doppler by about f_d,max, which a near emitter only explains with the height run down
+ * to a few metres, so below the altimeter only a height that low is refused: under
+ * twice the height h at which an orbit centred on the emitter swings as far as the far
+ * check's amplitude a, R sqrt(1 / a^2 - 1) (12 m for the default 25 m orbit). Strong
+ * fast gusts, which the gust prior underrates, pull a fit over the emitter down to
+ * 25-50 m from 100 m. Without a height prior every fit passes.
+ */
+inline bool height_agrees(const emitter_location& l, const seeker_config& c)
+{
+    constexpr double HEIGHT_SIGMAS = 2.5;
+    const double s = c.locate_altitude_sigma_m;
+    const double h0 = c.locate_altitude_m;
+    if (!(s > 0.0 && std::isfinite(h0)))
+        return true;
+    const double a = std::clamp(c.far_amplitude(), 0.1, 0.999);
+    const double swing_h = c.loiter_radius_m * std::sqrt(1.0 / (a * a) - 1.0);
+    const double floor = std::min(h0 - HEIGHT_SIGMAS * s, 2.0 * swing_h);
+    return l.altitude_m >= floor && l.altitude_m <= h0 + HEIGHT_SIGMAS * s;
+}
+
+//! A confirming fit's far excess under which a plane wave counts as plausible.
+constexpr double PLANE_WAVE_EXCESS = 25.0;
+
+/*!
+ * Whether an emitter far away explains the honest fit l's data almost as well as l: a
+ * plane wave from the best bearing, under the same gust prior, costs less than
+ * PLANE_WAVE_EXCESS more (emitter_location::far_excess, in units of the noise
+ * variance; unknown: no). Around the emitter the line of sight turns with the orbit and
+ * no plane wave follows it; 1-3 km off, where slow strong gusts can give fits by the
+ * vehicle that confirm each other, a plane wave does as well or better.
+ */
+inline bool far_is_plausible(const emitter_location& l)
+{
+    return l.far_excess < PLANE_WAVE_EXCESS;
+}
+
 } // namespace rfseek
 } // namespace gr
 

@@ -22,6 +22,7 @@
 namespace gr {
 namespace rfseek {
 
+using location::far_excess;
 using location::gust_fit;
 using location::params;
 using location::problem;
@@ -533,13 +534,16 @@ emitter_location emitter_locator::fit_range(std::size_t begin,
     out.rms_hz = std::sqrt(r0 / used);
     out.used = used;
     out.inflation = inflation;
-    if (nuisance)
+    if (nuisance) {
+        out.far_excess =
+            far_excess(pr, d_gust, d_gust_tau, d_alt, d_alt_sigma, th, s2 * inflation);
         carry_nuisance(pr,
                        th,
                        s2 * inflation,
                        { d_gust, d_gust_tau, d_alt, d_alt_sigma },
                        d_nuisance,
                        out);
+    }
     out.valid = std::isfinite(out.east_m) && std::isfinite(out.north_m) &&
                 std::isfinite(out.major_m) && std::isfinite(out.minor_m) &&
                 std::isfinite(out.wind_sigma_mps) && std::isfinite(out.altitude_m) &&

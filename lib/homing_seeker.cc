@@ -13,7 +13,8 @@
  *             again after the transit plus locate_orbits orbits; each fit is the next
  *             estimate orbited;
  *   arrived   a fit agrees within arrival_confirm_m with the estimate orbited and lies
- *             by the vehicle (arrival_confirm_m = 0: arrived when the detector fires);
+ *             by the vehicle, and no plane wave explains the data nearly as well
+ *             (arrival_confirm_m = 0: arrived when the detector fires);
  *   located   a fix with a 95 % ellipse under locate_max_axis_m is published (the slot
  *             after arrived at the earliest) and `done` set. The orbit goes on around
  *             the last estimate; no more fits after `done`.
@@ -165,26 +166,6 @@ private:
         return d_cfg.far_amplitude() * d_cfg.max_doppler_hz();
     }
 
-    // A fit whose height contradicts the altimeter (beyond HEIGHT_SIGMAS x its stated
-    // accuracy) is not trusted: an orbit far from the emitter swings its Doppler by
-    // about f_d,max, which a near emitter only explains with the height run down to
-    // a few metres. Below the altimeter, only a height that low is refused: under
-    // twice the height h at which an orbit centred on the emitter swings as far as
-    // the far check's amplitude a, R sqrt(1 / a^2 - 1) (12 m for the default 25 m
-    // orbit). Strong fast gusts, which the gust prior underrates, pull a fit over the
-    // emitter down to 25-50 m from 100 m. Without a height prior every fit passes.
-    bool height_agrees(const emitter_location& l) const
-    {
-        const double s = d_cfg.locate_altitude_sigma_m;
-        const double h0 = d_cfg.locate_altitude_m;
-        if (!(s > 0.0 && std::isfinite(h0)))
-            return true;
-        const double a = std::clamp(d_cfg.far_amplitude(), 0.1, 0.999);
-        const double swing_h = d_cfg.loiter_radius_m * std::sqrt(1.0 / (a * a) - 1.0);
-        const double floor = std::min(h0 - HEIGHT_SIGMAS * s, 2.0 * swing_h);
-        return l.altitude_m >= floor && l.altitude_m <= h0 + HEIGHT_SIGMAS * s;
-    }
-
     /*
      * Whether the orbits flown around the estimate (the last CENTRED_ORBITS of them, up
      * to MAX_ORBITS until their headings go all round) place the emitter near: their
@@ -257,7 +238,7 @@ private:
     emitter_location whole_loiter_fix(double t) const
     {
         emitter_location now = d_locator.fit(d_x, d_y, true);
-        if (!now.valid || !height_agrees(now) ||
+        if (!now.valid || !height_agrees(now, d_cfg) ||
             !(std::hypot(now.east_m, now.north_m) <= SEARCH_RADIUS_M))
             return emitter_location();
         if (d_cfg.locate_split_gate > 0.0)
@@ -279,13 +260,13 @@ private:
                 return w;
         emitter_location l = carried_fix(d_candidate, t);
         emitter_location now = d_locator.fit(d_x, d_y, d_cfg.locate_nuisance);
-        if (now.valid && height_agrees(now) && d_cfg.locate_split_gate > 0.0)
+        if (now.valid && height_agrees(now, d_cfg) && d_cfg.locate_split_gate > 0.0)
             d_locator.check_split(now, d_cfg.locate_split_gate);
-        if (now.valid && height_agrees(now) && now.major_m < l.major_m) {
+        if (now.valid && height_agrees(now, d_cfg) && now.major_m < l.major_m) {
             now.unsure = true;
             return now;
         }
-        if (d_cfg.locate_nuisance && now.valid && height_agrees(now))
+        if (d_cfg.locate_nuisance && now.valid && height_agrees(now, d_cfg))
             reach_fit(l, now);
         return l;
     }
@@ -363,7 +344,10 @@ private:
             d_locator.check_split(l, d_cfg.locate_split_gate);
         // Arrived only where the honest 95 % ellipse's semi-major axis is within the
         // locator's search area: a false overflight kilometres away can give tight
-        // fits by the vehicle under the gust prior, not under the wider gust models.
+        // fits by the vehicle under the gust prior, not under the wider gust models;
+        // nor where a plane wave does almost as well (far_is_plausible): orbit on.
+        if (honest && d_status == 0 && far_is_plausible(l))
+            return;
         if (honest && d_status == 0 && !(l.major_m <= SEARCH_RADIUS_M)) {
             d_held = l;
             if (d_retargets++ < MAX_RETARGETS) // more orbits may narrow it
@@ -469,7 +453,7 @@ private:
             // A fit is steered by once its ellipse fits in the locator's search area
             // (one orbit far from the emitter can run off to kilometres).
             const bool usable =
-                l.valid && l.major_m <= SEARCH_RADIUS_M && height_agrees(l);
+                l.valid && l.major_m <= SEARCH_RADIUS_M && height_agrees(l, d_cfg);
             double next = usable ? d_cfg.locate_orbits : 0.25;
             if (usable) {
                 // Arrived once the estimate agrees with the one orbited (carried with
@@ -555,7 +539,6 @@ private:
     static constexpr double SEARCH_RADIUS_M = 600.0;         // the locator's grid extent
     static constexpr double MAX_WIND_FRACTION = 0.9;         // of the airspeed
     static constexpr double MIN_FAR_CHECK_ALTITUDE_M = 50.0; // far_check()
-    static constexpr double HEIGHT_SIGMAS = 2.5;             // height_agrees()
     static constexpr double CENTRED_ORBITS = 2.0, MAX_ORBITS = 4.0; // near()
     static constexpr double NEAR_AMPLITUDE_FRACTION = 2.0 / 3.0;    // of the far check's
     static constexpr double WANDER_CONFIRMS = 4.0; // of arrival_confirm_m

@@ -8,6 +8,8 @@
 #include "location_model.h"
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <vector>
 
 namespace gr {
 namespace rfseek {
@@ -233,6 +235,8 @@ double gust_fit::residuals(const Eigen::VectorXd& th,
             line(sy(q), sty(q), c, d);
             J->col(q).array() -= c + d * dt.array();
         }
+        if (d_fix_p)
+            J->leftCols(2).setZero();
     }
     return r.cwiseProduct(w).squaredNorm();
 }
@@ -299,6 +303,63 @@ void gust_fit::run(Eigen::VectorXd& th, double s2, int max_it) const
         if (!improved)
             return;
     }
+}
+
+// The plane wave (location_model.h): its bearing every 10 deg, then every 1 deg around
+// the best, by the constant-wind cost.
+double far_excess(const problem& pr,
+                  double gust,
+                  double tau,
+                  double h0,
+                  double sigma_h,
+                  const Eigen::VectorXd& th,
+                  double var)
+{
+    constexpr double FAR_RANGE_M = 20000.0;
+    const gust_fit fit(pr, gust, tau, h0, sigma_h);
+    if (th.size() != static_cast<Eigen::Index>(fit.size()))
+        return std::numeric_limits<double>::quiet_NaN();
+    const std::size_t n = pr.t.size();
+    double cx = 0, cy = 0;
+    for (std::size_t k = 0; k < n; ++k) {
+        cx += pr.x[k];
+        cy += pr.y[k];
+    }
+    cx /= n;
+    cy /= n;
+    auto at = [&](double a) {
+        return params{ cx + FAR_RANGE_M * std::cos(a),
+                       cy + FAR_RANGE_M * std::sin(a),
+                       th(2),
+                       th(3),
+                       th(4) };
+    };
+    std::vector<double> r;
+    double best_a = 0.0, best_cost = std::numeric_limits<double>::infinity();
+    auto try_bearing = [&](double a) {
+        const double c = pr.residuals(at(a), r);
+        if (c < best_cost) {
+            best_cost = c;
+            best_a = a;
+        }
+    };
+    for (int q = 0; q < 36; ++q)
+        try_bearing(q * M_PI / 18.0);
+    const double coarse = best_a;
+    for (int q = -10; q <= 10; ++q)
+        try_bearing(coarse + q * M_PI / 180.0);
+    gust_fit far(pr, gust, tau, h0, sigma_h);
+    far.fix_position(true);
+    Eigen::VectorXd tf = Eigen::VectorXd::Zero(far.size());
+    const params b = at(best_a);
+    for (int i = 0; i < 5; ++i)
+        tf(i) = b[i];
+    far.run(tf, var, 40);
+    Eigen::MatrixXd N;
+    Eigen::VectorXd g, rr;
+    const double near_cost = fit.build(th, var, N, g, rr);
+    const double far_cost = far.build(tf, var, N, g, rr);
+    return (far_cost - near_cost) / var;
 }
 
 } // namespace location

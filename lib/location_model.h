@@ -10,6 +10,7 @@
  *   gust_fit  the model with the gusts as states under a Gauss-Markov prior, solved by
  *             Levenberg-Marquardt (maximum a posteriori), with the Gauss-Newton matrix
  *             that gives the fix's covariance.
+ *   far_excess the plane-wave test: an emitter far away fitted to the same data.
  * Internal to the library (emitter_locator, docs/seeker.md).
  */
 
@@ -89,6 +90,8 @@ public:
     //! trace((J^T J + s2 E^T E)^-1 J^T J): the parameters the data fit (gust states the
     //! prior holds near zero count for little).
     double effective_params(const Eigen::VectorXd& th, double s2) const;
+    //! Holds the emitter's position (th 0, 1) where it is in run() (a far emitter).
+    void fix_position(bool fix) { d_fix_p = fix; }
     //! Minimises the data cost + s2 |e|^2 from th (Levenberg-Marquardt).
     void run(Eigen::VectorXd& th, double s2, int max_it) const;
 
@@ -98,6 +101,7 @@ private:
     const problem& d_pr;
     double d_sigma_g, d_tau;
     double d_h0, d_sigma_h;
+    bool d_fix_p = false;
     static constexpr double wind_sigma = 15.0; //!< mean wind prior, m/s per axis
     std::size_t d_K = 0, d_m = 0;
     double d_spacing = 0.0;
@@ -105,6 +109,21 @@ private:
     std::vector<double> d_u;       //!< position between knots j0, j0 + 1
     row_matrix d_B; //!< n x K: integral of the hat functions from t_k to t_f
 };
+
+/*!
+ * How much worse than the fit th (gust model gust_mps, tau_s; height prior h0 +-
+ * sigma_h; noise variance var) an emitter far away explains pr's data: a plane wave
+ * (the emitter 20 km from the path's centroid at the bearing of least constant-wind
+ * cost), refitted with its position held under the same priors. The difference of the
+ * two MAP costs over var (emitter_location::far_excess); NaN if th is not that model's.
+ */
+double far_excess(const problem& pr,
+                  double gust_mps,
+                  double tau_s,
+                  double h0,
+                  double sigma_h,
+                  const Eigen::VectorXd& th,
+                  double var);
 
 } // namespace location
 } // namespace rfseek

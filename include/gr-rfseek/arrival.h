@@ -198,6 +198,10 @@ struct RFSEEK_API emitter_location {
     double off_height_weight = 0.0;
     //! RMS of the gust states the fit found (m/s per axis; 0 without gust states).
     double gust_rms_mps = 0.0;
+    //! How much worse a far emitter (a plane wave from the best bearing, the same
+    //! gust prior) explains the data than this fix: the difference of their costs
+    //! over the noise variance (fit with nuisance; NaN: not computed).
+    double far_excess = std::numeric_limits<double>::quiet_NaN();
     //! Published although its 95 % ellipse is larger than the seeker's limit
     //! (locate_max_axis_m): the loiter's budget ran out. The ellipse is still honest.
     bool unsure = false;

@@ -106,6 +106,9 @@ class qa_closed_loop(gr_unittest.TestCase):
         self.assertTrue(sure.summary.located and not sure.summary.location_unsure)
         self.assertFalse(sure.location.unsure)
         self.assertLessEqual(sure.location.major_m, 100.0)
+        # Arrived, so no plane wave (an emitter far away) explains its data nearly as
+        # well: the plane-wave test's excess is at least its gate of 25.
+        self.assertGreaterEqual(sure.location.far_excess, 25.0)
         self.assertTrue(unsure.summary.located and unsure.summary.location_unsure)
         self.assertTrue(unsure.location.unsure)
         self.assertGreater(unsure.location.major_m, 5.0)

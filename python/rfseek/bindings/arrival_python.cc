@@ -4,7 +4,7 @@
  */
 
 /* BINDTOOL_HEADER_FILE(arrival.h) */
-/* BINDTOOL_HEADER_FILE_HASH(f5c5bb1f374a3a52239540ba41783942) */
+/* BINDTOOL_HEADER_FILE_HASH(38b8743aa8ccba4d52310848100bf7d7) */
 
 #include <gr-rfseek/arrival.h>
 #include <pybind11/pybind11.h>
@@ -221,6 +221,11 @@ void bind_emitter_location_class(py::module& m)
         .def_readonly("gust_rms_mps",
                       &emitter_location::gust_rms_mps,
                       "RMS of the gust states the fit found (m/s per axis)")
+        .def_readonly("far_excess",
+                      &emitter_location::far_excess,
+                      "how much worse a plane wave (an emitter far away) explains the "
+                      "data than this fix, in units of the noise variance (NaN: not "
+                      "computed)")
         .def_readonly("unsure",
                       &emitter_location::unsure,
                       "published with a 95 % ellipse larger than the seeker's limit "

@@ -91,13 +91,8 @@ params
 grid_start(problem& pr, double search_m, double altitude_m, double altitude_sigma_m)
 {
     const std::size_t n = pr.t.size();
-    double cx = 0, cy = 0;
-    for (std::size_t k = 0; k < n; ++k) {
-        cx += pr.x[k];
-        cy += pr.y[k];
-    }
-    cx /= n;
-    cy /= n;
+    const std::array<double, 2> mid = pr.centroid();
+    const double cx = mid[0], cy = mid[1];
     pr.step = std::max<std::size_t>(1, n / 120);
     std::vector<double> r;
     params best{ cx, cy, 0.0, 0.0, 0.0 };

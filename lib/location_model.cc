@@ -62,6 +62,16 @@ std::size_t problem::inliers() const
     return static_cast<std::size_t>(std::count(use.begin(), use.end(), 1));
 }
 
+std::array<double, 2> problem::centroid() const
+{
+    double cx = 0.0, cy = 0.0;
+    for (std::size_t k = 0; k < t.size(); ++k) {
+        cx += x[k];
+        cy += y[k];
+    }
+    return { cx / t.size(), cy / t.size() };
+}
+
 gust_fit::gust_fit(
     const problem& p, double sigma_g, double tau, double h0, double sigma_h)
     : d_pr(p), d_sigma_g(sigma_g), d_tau(tau), d_h0(h0), d_sigma_h(sigma_h)
@@ -319,14 +329,8 @@ double far_excess(const problem& pr,
     const gust_fit fit(pr, gust, tau, h0, sigma_h);
     if (th.size() != static_cast<Eigen::Index>(fit.size()))
         return std::numeric_limits<double>::quiet_NaN();
-    const std::size_t n = pr.t.size();
-    double cx = 0, cy = 0;
-    for (std::size_t k = 0; k < n; ++k) {
-        cx += pr.x[k];
-        cy += pr.y[k];
-    }
-    cx /= n;
-    cy /= n;
+    const std::array<double, 2> mid = pr.centroid();
+    const double cx = mid[0], cy = mid[1];
     auto at = [&](double a) {
         return params{ cx + FAR_RANGE_M * std::cos(a),
                        cy + FAR_RANGE_M * std::sin(a),

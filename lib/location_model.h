@@ -47,6 +47,8 @@ struct problem {
                      double* c = nullptr,
                      double* d = nullptr) const;
     std::size_t inliers() const;
+    //! The mean of the path's positions (x, y); the path not empty.
+    std::array<double, 2> centroid() const;
 };
 
 /*

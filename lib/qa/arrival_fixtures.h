@@ -3,7 +3,8 @@
  * SPDX-License-Identifier: GPL-3.0-or-later
  *
  * arrival_fixtures: what the overflight detector's tests share (the synthetic
- * vehicle's speed, slot and carrier, the detector's settings for it, a pass's result).
+ * vehicle's speed, slot and carrier, the detector's settings for it, a pass's result)
+ * and the locator's (gusty orbits).
  */
 
 #ifndef INCLUDED_RFSEEK_QA_ARRIVAL_FIXTURES_H
@@ -71,6 +72,47 @@ pass_result fly_pass(overflight_detector& d,
         }
     }
     return out;
+}
+
+/*!
+ * Three orbits of radius_m flown in the air frame for the emitter locator loc, height_m
+ * above the emitter's ground, in a (3.2, -2.4) m/s wind with first-order Gauss-Markov
+ * gusts (std gust_mps per axis, correlation time tau_s) and 3 Hz of white noise on the
+ * frequency (CFO 500 Hz + 0.1 Hz/s). The orbit starts at ground position (gx, gy), the
+ * emitter at the origin; on return (gx, gy) is where it ended and (qx, qy) the
+ * dead-reckoned (air-frame) end.
+ */
+inline void fly_gusty_orbits(emitter_locator& loc,
+                             rng& g,
+                             double height_m,
+                             double radius_m,
+                             double gust_mps,
+                             double tau_s,
+                             double& gx,
+                             double& gy,
+                             double& qx,
+                             double& qy)
+{
+    const double w = V / radius_m, wx = 3.2, wy = -2.4;
+    const int n = static_cast<int>(3.0 * 2.0 * M_PI / w / T);
+    const double a = std::exp(-T / tau_s), s = gust_mps * std::sqrt(1.0 - a * a);
+    qx = qy = 0.0;
+    double ux = gust_mps * g.normal(), uy = gust_mps * g.normal();
+    for (int k = 0; k <= n; ++k) {
+        const double t = k * T, ang = w * t;
+        const double vx = V * std::cos(ang), vy = V * std::sin(ang);
+        const double r = std::sqrt(gx * gx + gy * gy + height_m * height_m);
+        const double dop = ((vx + wx + ux) * -gx + (vy + wy + uy) * -gy) / (LAMBDA * r);
+        loc.add(t, qx, qy, vx, vy, 500.0 + 0.1 * t + dop + 3.0 * g.normal());
+        if (k < n) {
+            qx += vx * T;
+            qy += vy * T;
+            gx += (vx + wx + ux) * T;
+            gy += (vy + wy + uy) * T;
+            ux = a * ux + s * g.normal();
+            uy = a * uy + s * g.normal();
+        }
+    }
 }
 
 // A `realistic` flight of `adaptive` that arrives and locates by itself, with no limit

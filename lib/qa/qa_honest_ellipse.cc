@@ -68,28 +68,9 @@ void draw(std::uint64_t seed,
     nu.calibrated = false;
     loc.set_nuisance(nu);
     rng g(seed, 50, 0);
-    const double w = V / R, wx = 3.2, wy = -2.4;
     const double ox = 40.0 * (g.uniform() - 0.5), oy = 40.0 * (g.uniform() - 0.5);
-    const int n = static_cast<int>(3.0 * 2.0 * M_PI / w / T);
-    const double a = std::exp(-T / tau_s), s = gust_mps * std::sqrt(1.0 - a * a);
-    double gx = ox, gy = oy - R; // ground position, emitter at the origin
-    double qx = 0.0, qy = 0.0;   // dead-reckoned (air frame)
-    double ux = gust_mps * g.normal(), uy = gust_mps * g.normal();
-    for (int k = 0; k <= n; ++k) {
-        const double t = k * T, ang = w * t;
-        const double vx = V * std::cos(ang), vy = V * std::sin(ang);
-        const double r = std::sqrt(gx * gx + gy * gy + H * H);
-        const double dop = ((vx + wx + ux) * -gx + (vy + wy + uy) * -gy) / (LAMBDA * r);
-        loc.add(t, qx, qy, vx, vy, 500.0 + 0.1 * t + dop + 3.0 * g.normal());
-        if (k < n) {
-            qx += vx * T;
-            qy += vy * T;
-            gx += (vx + wx + ux) * T;
-            gy += (vy + wy + uy) * T;
-            ux = a * ux + s * g.normal();
-            uy = a * uy + s * g.normal();
-        }
-    }
+    double gx = ox, gy = oy - R, qx, qy; // ground (emitter at the origin), dead-reckoned
+    fly_gusty_orbits(loc, g, H, R, gust_mps, tau_s, gx, gy, qx, qy);
     const emitter_location l = loc.fit(qx, qy, nuisance);
     if (!l.valid)
         return;

@@ -25,38 +25,16 @@ using namespace gr::rfseek::qa;
 namespace {
 
 /*
- * Three orbits of 25 m flown in the air frame, 50 m above the emitter's ground, in a
- * (3.2, -2.4) m/s wind with first-order Gauss-Markov gusts of 2.5 m/s per axis and
- * 30 s, 3 Hz of white noise on the frequency. The orbit starts (ox, oy) from the
- * emitter. The locator has the seeker's default priors (gusts 1.5 m/s at 4 s, the
- * altimeter right +- 20 m).
+ * Three orbits of 25 m (fly_gusty_orbits) 50 m above the emitter's ground, gusts of
+ * 2.5 m/s per axis and 30 s. The orbit starts (ox, oy) from the emitter. The locator has
+ * the seeker's default priors (gusts 1.5 m/s at 4 s, the altimeter right +- 20 m).
  */
 emitter_location orbit(std::uint64_t seed, double ox, double oy, bool nuisance = true)
 {
-    constexpr double R = 25.0, H = 50.0, GUST = 2.5, TAU = 30.0;
-    emitter_locator loc(LAMBDA, 600.0, 1.5, 4.0, H, 20.0);
+    emitter_locator loc(LAMBDA, 600.0, 1.5, 4.0, 50.0, 20.0);
     rng g(seed, 51, 0);
-    const double w = V / R, wx = 3.2, wy = -2.4;
-    const int n = static_cast<int>(3.0 * 2.0 * M_PI / w / T);
-    const double a = std::exp(-T / TAU), s = GUST * std::sqrt(1.0 - a * a);
-    double gx = ox, gy = oy; // ground position, emitter at the origin
-    double qx = 0.0, qy = 0.0;
-    double ux = GUST * g.normal(), uy = GUST * g.normal();
-    for (int k = 0; k <= n; ++k) {
-        const double t = k * T, ang = w * t;
-        const double vx = V * std::cos(ang), vy = V * std::sin(ang);
-        const double r = std::sqrt(gx * gx + gy * gy + H * H);
-        const double dop = ((vx + wx + ux) * -gx + (vy + wy + uy) * -gy) / (LAMBDA * r);
-        loc.add(t, qx, qy, vx, vy, 500.0 + 0.1 * t + dop + 3.0 * g.normal());
-        if (k < n) {
-            qx += vx * T;
-            qy += vy * T;
-            gx += (vx + wx + ux) * T;
-            gy += (vy + wy + uy) * T;
-            ux = a * ux + s * g.normal();
-            uy = a * uy + s * g.normal();
-        }
-    }
+    double gx = ox, gy = oy, qx, qy;
+    fly_gusty_orbits(loc, g, 50.0, 25.0, 2.5, 30.0, gx, gy, qx, qy);
     return loc.fit(qx, qy, nuisance);
 }
 
